@@ -1,0 +1,65 @@
+# lrt: one text that is both a book and a C++ library.
+#
+#   make            tangle, lint, compile the library, weave build/book.pdf
+#   make test       every chapter's tests against the code as of that chapter
+#   make test CH=02 chapter 2's tests against the code as of chapter 2
+#   make book       only the PDF
+#   make tangle     refresh tangled/, the readable tangle that is committed
+#   make lint       check the chapters' noweb/Markdown format
+#
+# Options: FLOAT=double (Float is double), SANITIZE=1 (ASan + UBSan build of
+# the tests), CHAPTERS="..." and BUILD=dir to build another set of chapters.
+
+SHELL := /bin/bash
+.SHELLFLAGS := -eo pipefail -c
+.DEFAULT_GOAL := all
+
+CHAPTERS ?= $(sort $(wildcard chapters/[0-9][0-9]-*.md))
+BUILD ?= build
+JOBS ?= $(shell nproc)
+chapter_number = $(firstword $(subst -, ,$(notdir $(1))))
+NUMBERS := $(foreach c,$(CHAPTERS),$(call chapter_number,$(c)))
+LAST := $(lastword $(NUMBERS))
+ASOF = $(MAKE) --no-print-directory -f tools/asof.mk
+export CHAPTERS BUILD FLOAT SANITIZE
+
+.PHONY: all deps lint tangle lib test book clean
+
+all: lint tangle lib compile_commands.json book
+
+deps:
+	@tools/deps.sh
+
+lint: | deps
+	python3 tools/lint.py $(CHAPTERS)
+
+tangle: lint
+	python3 tools/tangle.py --out tangled $(CHAPTERS)
+
+lib: lint
+	$(ASOF) ASOF=$(LAST) tangle
+	$(ASOF) ASOF=$(LAST) -j$(JOBS) lib
+
+# The code as of chapter N is the tangle of chapters 1..N; it must compile and
+# pass the tests of chapters 1..N, so no chapter leans on a later one.
+test: lint
+	@bins=(); \
+	for n in $(or $(CH),$(NUMBERS)); do \
+	    $(ASOF) ASOF=$$n ONLY=$(CH) tangle; \
+	    $(ASOF) ASOF=$$n ONLY=$(CH) -j$(JOBS) tests; \
+	    bins+=($$($(ASOF) -s ASOF=$$n ONLY=$(CH) list-tests)); \
+	done; \
+	python3 tools/runtests.py $(if $(CH),,--python-tests tests/tools) "$${bins[@]}"
+
+compile_commands.json: tangle
+	python3 tools/compile_commands.py --src tangled > $@
+
+book: $(BUILD)/book.pdf
+
+$(BUILD)/book.pdf: book.md $(CHAPTERS) tools/weave.sh tools/weave.lua tools/preamble.tex \
+                   $(wildcard figures/*) | lint
+	tools/weave.sh $(BUILD)/book book.md $(CHAPTERS)
+	cp $(BUILD)/book/book.pdf $@
+
+clean:
+	rm -rf $(BUILD) compile_commands.json

@@ -1,0 +1,66 @@
+# Builds the code as of chapter ASOF: the tangle of the chapters numbered up to
+# ASOF (with #line directives, so diagnostics name the chapter and line), the
+# library, and one GoogleTest binary per chapter with tests in tests/chNN/.
+# Called by the Makefile: first `tangle`, then `lib` or `tests` (a second make,
+# so the wildcards below see the freshly tangled files).
+
+SHELL := /bin/bash
+.SHELLFLAGS := -eo pipefail -c
+
+CXX ?= g++
+VARIANT := $(if $(SANITIZE),sanitize,$(if $(filter double,$(FLOAT)),double,float))
+SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all
+OPT := $(if $(SANITIZE),-O1 $(SANITIZERS) -fno-omit-frame-pointer,-O2)
+CXXFLAGS := -std=c++17 -g $(OPT) -Wall -Wextra -Werror \
+            $(if $(filter double,$(FLOAT)),-DLRT_FLOAT_AS_DOUBLE)
+LDFLAGS := $(if $(SANITIZE),$(SANITIZERS))
+
+chapter_number = $(firstword $(subst -, ,$(notdir $(1))))
+up_to_asof = $(shell [ $(call chapter_number,$(1)) -le $(ASOF) ] && echo $(1))
+ASOF_CHAPTERS := $(foreach c,$(CHAPTERS),$(call up_to_asof,$(c)))
+# Tests of chapter ONLY if given, otherwise of every chapter up to ASOF.
+TEST_NUMBERS := $(foreach c,$(ASOF_CHAPTERS),$(if $(ONLY),$(filter $(ONLY),$(call \
+                  chapter_number,$(c))),$(call chapter_number,$(c))))
+TEST_NUMBERS := $(foreach n,$(TEST_NUMBERS),$(if $(wildcard tests/ch$(n)/*.cpp),$(n)))
+
+DIR := $(BUILD)/$(VARIANT)/asof/$(ASOF)
+SRC := $(DIR)/src
+LIB_SRCS := $(shell find $(SRC)/lrt -name '*.cpp' 2>/dev/null | sort)
+LIB_OBJS := $(patsubst $(SRC)/%.cpp,$(DIR)/obj/lib/%.o,$(LIB_SRCS))
+LIB := $(DIR)/liblrt.a
+TEST_BINS := $(foreach n,$(TEST_NUMBERS),$(DIR)/tests/ch$(n))
+
+.PHONY: tangle lib tests list-tests
+
+tangle:
+	@mkdir -p $(SRC)
+	python3 tools/tangle.py --line-directives --out $(SRC) $(ASOF_CHAPTERS)
+
+lib: $(if $(LIB_OBJS),$(LIB))
+
+tests: $(TEST_BINS)
+
+list-tests:
+	@$(foreach n,$(TEST_NUMBERS),echo "asof$(ASOF)/ch$(n)=$(DIR)/tests/ch$(n)";)
+
+$(LIB): $(LIB_OBJS)
+	rm -f $@
+	ar rcs $@ $^
+
+$(DIR)/obj/lib/%.o: $(SRC)/%.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) -I$(SRC) -MMD -MP -c $< -o $@
+
+$(DIR)/obj/tests/%.o: tests/%.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) -I$(SRC) -MMD -MP -c $< -o $@
+
+define test_binary
+$(DIR)/tests/ch$(1): $(patsubst tests/%.cpp,$(DIR)/obj/tests/%.o,$(wildcard \
+                       tests/ch$(1)/*.cpp)) $(if $(LIB_OBJS),$(LIB))
+	@mkdir -p $$(@D)
+	$(CXX) $(LDFLAGS) -o $$@ $$^ -lgtest_main -lgtest -pthread
+endef
+$(foreach n,$(TEST_NUMBERS),$(eval $(call test_binary,$(n))))
+
+-include $(shell find $(DIR)/obj -name '*.d' 2>/dev/null)

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Check that the Debian 12 packages lrt builds with are present. Run as root, it
+# installs what is missing; otherwise it prints the one apt-get line and fails.
+# Each check looks for a file the package ships, so a half-installed TeX is caught.
+set -euo pipefail
+
+missing=()
+need() {  # need PACKAGE TEST...: PACKAGE is missing unless the test succeeds
+    local package=$1; shift
+    "$@" >/dev/null 2>&1 || missing+=("$package")
+}
+have_sty() { kpsewhich "$1" | grep -q .; }
+
+need make          command -v make
+need g++           command -v g++
+need python3       command -v python3
+need noweb         command -v notangle
+need pandoc        command -v pandoc
+need libgtest-dev  test -f /usr/include/gtest/gtest.h
+need poppler-utils command -v pdftotext
+need texlive-latex-recommended command -v pdflatex
+need texlive-latex-recommended have_sty fancyvrb.sty
+need texlive-fonts-recommended have_sty pcrr8t.tfm
+need texlive-latex-extra       have_sty framed.sty
+need texlive-pictures          have_sty tikz.sty
+need lmodern                   have_sty lmodern.sty
+
+[ ${#missing[@]} -eq 0 ] && exit 0
+packages=$(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')
+if [ "$(id -u)" -eq 0 ]; then
+    echo "deps: installing $packages"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    # shellcheck disable=SC2086
+    apt-get install -y -qq --no-install-recommends $packages
+    # Check again: a package that installed but did not bring what we test for
+    # must stop the build here, not in the middle of a LaTeX run.
+    [ -z "${LRT_DEPS_RECHECK:-}" ] && LRT_DEPS_RECHECK=1 exec "$0"
+    echo "deps: still missing after installing: $packages" >&2
+    exit 1
+else
+    echo "lrt needs Debian packages that are not installed. Run:" >&2
+    echo "    sudo apt-get install $packages" >&2
+    exit 1
+fi

@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""Run GoogleTest binaries and the tools' own tests; print one summary.
+
+    tools/runtests.py [--python-tests DIR] [LABEL=BINARY ...]
+
+Each binary runs as its own process with a time limit and writes a JSON report;
+a test counts as passed only when that report says so, so a binary that dies
+midway loses its remaining tests instead of passing them. The last line,
+"tests: N passed, M failed", is the one CI reads.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+TIME_LIMIT = 900  # seconds for one test binary; a hang must not stall CI
+
+
+def run_gtest(label, binary):
+    """Returns (passed, failed names) for one GoogleTest binary."""
+    with tempfile.TemporaryDirectory() as tmp:
+        report = os.path.join(tmp, 'report.json')
+        try:
+            proc = subprocess.run([binary, '--gtest_brief=1', '--gtest_output=json:' + report],
+                                  capture_output=True, text=True, timeout=TIME_LIMIT)
+            output, code = proc.stdout + proc.stderr, proc.returncode
+        except subprocess.TimeoutExpired as e:
+            output, code = (e.stdout or b'').decode(errors='replace'), 'timeout'
+        try:
+            with open(report) as f:
+                suites = json.load(f)['testsuites']
+        except (OSError, ValueError, KeyError):
+            print(output)
+            print('%s: %s ended (%s) without a report: counted as one failure'
+                  % (label, binary, code))
+            return 0, [label + ' (no report)']
+    passed, failed = 0, []
+    for suite in suites:
+        for test in suite['testsuite']:
+            if test.get('result') == 'SKIPPED' or test.get('status') == 'NOTRUN':
+                continue
+            if test.get('failures'):
+                failed.append('%s %s.%s' % (label, suite['name'], test['name']))
+            else:
+                passed += 1
+    if failed or code != 0:
+        print(output)
+        if not failed:  # exited non-zero after all tests passed (a leak report, say)
+            failed.append('%s (exit status %s)' % (label, code))
+    print('%-28s %5d passed, %d failed' % (label, passed, len(failed)))
+    return passed, failed
+
+
+def run_python(directory):
+    suite = unittest.defaultTestLoader.discover(directory, top_level_dir=directory)
+    result = unittest.TextTestRunner(verbosity=1, stream=sys.stdout).run(suite)
+    failed = ['tools %s' % test.id() for test, _ in result.failures + result.errors]
+    passed = result.testsRun - len(failed) - len(result.skipped)
+    print('%-28s %5d passed, %d failed' % ('tools', passed, len(failed)))
+    return passed, failed
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument('--python-tests')
+    parser.add_argument('binaries', nargs='*', metavar='LABEL=BINARY')
+    args = parser.parse_args()
+    passed, failed = 0, []
+    if args.python_tests:
+        p, f = run_python(args.python_tests)
+        passed, failed = passed + p, failed + f
+    for item in args.binaries:
+        label, binary = item.split('=', 1)
+        p, f = run_gtest(label, binary)
+        passed, failed = passed + p, failed + f
+    for name in failed:
+        print('FAILED:', name)
+    print('tests: %d passed, %d failed' % (passed, len(failed)))
+    sys.exit(1 if failed or passed == 0 else 0)
+
+
+if __name__ == '__main__':
+    main()

@@ -3,9 +3,14 @@
 #   make            tangle, lint, compile the library, weave build/book.pdf
 #   make test       every chapter's tests against the code as of that chapter
 #   make test CH=02 chapter 2's tests against the code as of chapter 2
+#   make test UPTO=05  chapters 1..5's tests against the code as of chapter 5
+#                   (UPTO=last: every test against the whole library)
 #   make book       only the PDF
 #   make tangle     refresh tangled/, the readable tangle that is committed
 #   make lint       check the chapters' noweb/Markdown format
+#   make bench      chapter 6's BVH benchmark (tools/bench.mk): table + JSON
+#   make exercises  student and solution kits; more in tools/exercises.mk
+#   make grade SUBMISSION=path [OUT=dir]  grade a student's chapters (tools/grade.mk)
 #
 # Options: FLOAT=double (Float is double), SANITIZE=1 (ASan + UBSan build of
 # the tests), CHAPTERS="..." and BUILD=dir to build another set of chapters.
@@ -20,6 +25,7 @@ JOBS ?= $(shell nproc)
 chapter_number = $(firstword $(subst -, ,$(notdir $(1))))
 NUMBERS := $(foreach c,$(CHAPTERS),$(call chapter_number,$(c)))
 LAST := $(lastword $(NUMBERS))
+PREFIXES := $(or $(CH),$(subst last,$(LAST),$(UPTO)),$(NUMBERS))
 ASOF = $(MAKE) --no-print-directory -f tools/asof.mk
 export CHAPTERS BUILD FLOAT SANITIZE
 
@@ -31,7 +37,7 @@ deps:
 	@tools/deps.sh
 
 lint: | deps
-	python3 tools/lint.py $(CHAPTERS)
+	python3 tools/lint.py --book $(CHAPTERS)
 
 tangle: lint
 	python3 tools/tangle.py --out tangled $(CHAPTERS)
@@ -44,7 +50,7 @@ lib: lint
 # pass the tests of chapters 1..N, so no chapter leans on a later one.
 test: lint
 	@bins=(); \
-	for n in $(or $(CH),$(NUMBERS)); do \
+	for n in $(PREFIXES); do \
 	    $(ASOF) ASOF=$$n ONLY=$(CH) tangle; \
 	    $(ASOF) ASOF=$$n ONLY=$(CH) -j$(JOBS) tests; \
 	    bins+=($$($(ASOF) -s ASOF=$$n ONLY=$(CH) list-tests)); \
@@ -56,10 +62,15 @@ compile_commands.json: tangle
 
 book: $(BUILD)/book.pdf
 
-$(BUILD)/book.pdf: book.md $(CHAPTERS) tools/weave.sh tools/weave.lua tools/preamble.tex \
+$(BUILD)/book.pdf: book.md $(CHAPTERS) tools/weave.sh tools/weave.lua tools/exercises.lua \
+                   tools/preamble.tex \
                    $(wildcard figures/*) | lint
 	tools/weave.sh $(BUILD)/book book.md $(CHAPTERS)
 	cp $(BUILD)/book/book.pdf $@
 
 clean:
 	rm -rf $(BUILD) compile_commands.json
+
+include tools/exercises.mk
+include tools/bench.mk
+include tools/grade.mk

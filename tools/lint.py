@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 """Check that chapters are valid for both noweb and pandoc, with file:line errors.
 
-    tools/lint.py CHAPTER.md...     (in chapter order)
+    tools/lint.py [--book] CHAPTER.md...     (in chapter order)
+
+--book also checks the chapter file names that the build relies on.
 
 The rules come from what goes wrong silently otherwise (see DESIGN.md, section
 3): notangle drops a whole file on an unescaped <<, reads `a << 2 >> 1` as a
 fragment use, turns a missing @ into code that swallows the following prose,
 and only warns about undefined fragments.
 """
+import os
 import re
 import sys
 from collections import defaultdict
@@ -146,10 +149,34 @@ class Lint:
                            'one chapter: %s' % (name, ', '.join(paths)))
 
 
-def main(paths):
+CHAPTER_NAME = re.compile(r'^(\d\d)-[a-z0-9-]+\.md$')
+
+
+def check_names(lint, paths):
+    """The build orders chapters, and cuts the code as of chapter N, by the
+    two-digit number that starts each file name: a chapter without one would
+    silently drop out of the build."""
+    seen = {}
+    for path in paths:
+        match = CHAPTER_NAME.match(os.path.basename(path))
+        if not match:
+            lint.error(path, 0, 'a chapter file is named NN-slug.md (two digits, then '
+                       'lower-case words joined by -)')
+        elif match.group(1) in seen:
+            lint.error(path, 0, 'chapter number %s is also used by %s'
+                       % (match.group(1), seen[match.group(1)]))
+        else:
+            seen[match.group(1)] = path
+
+
+def main(args):
+    book = args[:1] == ['--book']
+    paths = args[1:] if book else args
     if not paths:
-        sys.exit('usage: lint.py CHAPTER.md...')
+        sys.exit('usage: lint.py [--book] CHAPTER.md...')
     lint = Lint()
+    if book:
+        check_names(lint, paths)
     chapters = [lint.parse(path) for path in paths]
     lint.check_book(chapters)
     for message in lint.errors:

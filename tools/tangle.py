@@ -22,6 +22,9 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 LINE_FORMAT = '#line %L "%F"%N'
+# Exercise markers (// BEGIN SOLUTION ...) and stub blocks never reach the
+# tangle: see tools/exercise_filter.py and docs/exercises.md.
+EXERCISES_FILTER = ['-filter', 'python3 ' + os.path.join(HERE, 'exercise_filter.py')]
 
 
 def fail(message):
@@ -71,10 +74,11 @@ def main():
     roots = roots_by_chapter(args.chapters)
     for root, chapter in sorted(roots.items()):
         if args.line_directives:
-            code = run(['notangle', '-L' + LINE_FORMAT, '-R' + root] + args.chapters)
+            code = run(['notangle', '-L' + LINE_FORMAT] + EXERCISES_FILTER +
+                       ['-R' + root] + args.chapters)
         else:
             code = header(root, chapter) + run(
-                ['notangle', '-filter',
+                ['notangle'] + EXERCISES_FILTER + ['-filter',
                  'python3 ' + os.path.join(HERE, 'fragment_comments.py'),
                  '-R' + root] + args.chapters)
         if not code.endswith('\n'):

@@ -24,7 +24,8 @@ writer, so the highlighting macros come from tools/weave.sh.
 
 local CHUNK_HEADER = '^<<(.+)>>=%s*$'
 local USE_LINE = '^(%s*)<<(.-)>>%s*$'
-local EXERCISE_MARKER = '^%s*// (BEGIN|END) (SOLUTION|STUB)%s*$'
+-- Lua patterns have no alternation (a|b): shown_lines() checks the two words.
+local EXERCISE_MARKER = '^%s*// (%u+) (%u+)%s*$'
 
 local function fail(message)
   io.stderr:write('weave.lua: ' .. message .. '\n')
@@ -229,7 +230,7 @@ local function shown_lines(chunk)
   local out, in_stub = {}, false
   for _, line in ipairs(chunk.lines) do
     local edge, what = line:match(EXERCISE_MARKER)
-    if edge then
+    if (edge == 'BEGIN' or edge == 'END') and (what == 'SOLUTION' or what == 'STUB') then
       in_stub = (what == 'STUB' and edge == 'BEGIN')
     elseif not in_stub then
       out[#out + 1] = line

@@ -18,7 +18,8 @@ printf '```cpp\nint x;\n```\n' |
     pandoc -s -t latex --template="$out/macros.template" > "$out/preamble.tex"
 cat "$tools/preamble.tex" >> "$out/preamble.tex"
 
-pandoc "$@" --from markdown --lua-filter "$tools/weave.lua" \
+pandoc "$@" --from markdown --lua-filter "$tools/exercises.lua" \
+    --lua-filter "$tools/weave.lua" \
     --top-level-division=chapter --number-sections --toc \
     --include-in-header="$out/preamble.tex" \
     --standalone -o "$out/book.tex"

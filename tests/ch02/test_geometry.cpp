@@ -351,7 +351,7 @@ void CheckFrame(const Vector3f &v1) {
 
 }  // namespace
 
-TEST(Vector3, CoordinateSystemIsOrthonormal) {
+TEST(Ex2_12_Vector3, CoordinateSystemIsOrthonormal) {
     std::mt19937_64 rng(kSeed + 8);
     for (int i = 0; i < kRandomCases; ++i) {
         Vector3f v = RandomVector(rng);

@@ -258,7 +258,7 @@ TEST(Bounds3, BoundingSphereContainsCorners) {
 // ---------------------------------------------------------------------------
 // Union, intersection and containment
 
-TEST(Bounds3, UnionWithEmptyIsIdentity) {
+TEST(Ex2_14_Bounds3, UnionWithEmptyIsIdentity) {
     Point3f p(1, -2, 3);
     EXPECT_EQ(Union(Bounds3f(), p), Bounds3f(p));
     EXPECT_EQ(Union(Bounds3i(), Point3i(4, 5, 6)), Bounds3i(Point3i(4, 5, 6)));
@@ -293,7 +293,7 @@ TEST(Bounds3, UnionOfPointsIsTheirBoundingBox) {
     }
 }
 
-TEST(Bounds3, UnionContainsBothAndIsSetUnionHull) {
+TEST(Ex2_14_Bounds3, UnionContainsBothAndIsSetUnionHull) {
     std::mt19937_64 rng(kSeed + 6);
     for (int i = 0; i < kRandomCases / 20; ++i) {
         Bounds3f a = RandomBox(rng), b = RandomBox(rng);
@@ -329,7 +329,7 @@ TEST(Bounds3, UnionIgnoresNaNCoordinates) {
     EXPECT_FALSE(InsideExclusive(Point3f(0, 0, kNaN), b));
 }
 
-TEST(Bounds3, InfiniteCoordinates) {
+TEST(Ex2_14_Bounds3, InfiniteCoordinates) {
     Bounds3f b(Point3f(0, 0, 0), Point3f(1, 1, 1));
     Bounds3f u = Union(b, Point3f(Infinity, 0, -Infinity));
     EXPECT_EQ(u.pMax.x, Infinity);
@@ -349,7 +349,7 @@ TEST(Bounds3, InfiniteCoordinates) {
     EXPECT_TRUE(Intersect(all, Bounds3f()).IsEmpty());
 }
 
-TEST(Bounds3, IntersectIsTheSetIntersection) {
+TEST(Ex2_14_Bounds3, IntersectIsTheSetIntersection) {
     std::mt19937_64 rng(kSeed + 7);
     int nonEmpty = 0, empty = 0;
     for (int i = 0; i < kRandomCases / 20; ++i) {
@@ -375,7 +375,7 @@ TEST(Bounds3, IntersectIsTheSetIntersection) {
     EXPECT_GT(empty, kRandomCases / 200);
 }
 
-TEST(Bounds3, OverlapsIncludesTouchingBoxes) {
+TEST(Ex2_14_Bounds3, OverlapsIncludesTouchingBoxes) {
     Bounds3f a(Point3f(0, 0, 0), Point3f(1, 1, 1));
     Bounds3f face(Point3f(1, 0, 0), Point3f(2, 1, 1));
     Bounds3f corner(Point3f(1, 1, 1), Point3f(2, 2, 2));
@@ -443,7 +443,7 @@ TEST(Bounds3, InsideExclusivePartitionsAGrid) {
     EXPECT_GT(multiplyCounted, 0);
 }
 
-TEST(Bounds3, Expand) {
+TEST(Ex2_14_Bounds3, Expand) {
     Bounds3f b(Point3f(0, 0, 0), Point3f(1, 2, 3));
     Bounds3f e = Expand(b, 1);
     EXPECT_EQ(e, Bounds3f(Point3f(-1, -1, -1), Point3f(2, 3, 4)));

@@ -322,7 +322,7 @@ TEST(SurfaceInteraction, SetShadingGeometryRandomHemispheres) {
 // ---------------------------------------------------------------------------
 // Transforming a SurfaceInteraction
 
-TEST(SurfaceInteraction, TransformKeepsGeometryConsistent) {
+TEST(Ex2_13_SurfaceInteraction, TransformKeepsGeometryConsistent) {
     constexpr int kCases = 3000;
     std::mt19937_64 rng(604);
     for (int c = 0; c < kCases; ++c) {
@@ -388,7 +388,7 @@ TEST(SurfaceInteraction, TransformKeepsGeometryConsistent) {
     }
 }
 
-TEST(SurfaceInteraction, FlipNormalTracksTheCrossProductThroughTransforms) {
+TEST(Ex2_13_SurfaceInteraction, FlipNormalTracksTheCrossProductThroughTransforms) {
     // flipNormal is true exactly when n is the negated cross product of the
     // interaction's own dpdu and dpdv, also after any chain of
     // transformations, mirrors included.
@@ -411,7 +411,7 @@ TEST(SurfaceInteraction, FlipNormalTracksTheCrossProductThroughTransforms) {
     }
 }
 
-TEST(SurfaceInteraction, OutwardNormalsStayOutwardUnderMirrors) {
+TEST(Ex2_13_SurfaceInteraction, OutwardNormalsStayOutwardUnderMirrors) {
     // A point on a sphere with tangents whose cross product points outward.
     // Built in object space (flip = reverseOrientation) and transformed, or
     // built from world-space tangents (flip = reverseOrientation ^
@@ -448,7 +448,7 @@ TEST(SurfaceInteraction, OutwardNormalsStayOutwardUnderMirrors) {
     }
 }
 
-TEST(SurfaceInteraction, TransformByIdentityAndZeroDirection) {
+TEST(Ex2_13_SurfaceInteraction, TransformByIdentityAndZeroDirection) {
     std::mt19937_64 rng(607);
     SurfaceInteraction si = RandomSurfaceInteraction(rng, false);
     SurfaceInteraction ts = Transform()(si);

@@ -480,7 +480,7 @@ TEST(Transform, IsIdentity) {
 // ---------------------------------------------------------------------------
 // Basic transformations
 
-TEST(Transform, TranslateMovesPointsButNotVectorsOrNormals) {
+TEST(Ex2_13_Transform, TranslateMovesPointsButNotVectorsOrNormals) {
     Transform t = Translate(Vector3f(1, -2, 0.5));
     EXPECT_EQ(t(Point3f(1, 2, 3)), Point3f(2, 0, 3.5));
     EXPECT_EQ(t(Vector3f(1, 2, 3)), Vector3f(1, 2, 3));
@@ -492,7 +492,7 @@ TEST(Transform, TranslateMovesPointsButNotVectorsOrNormals) {
     EXPECT_FALSE(t.SwapsHandedness());
 }
 
-TEST(Transform, ScaleAndItsInverse) {
+TEST(Ex2_13_Transform, ScaleAndItsInverse) {
     Transform s = Scale(2, -4, 0.5);
     EXPECT_EQ(s(Point3f(1, 1, 1)), Point3f(2, -4, 0.5));
     EXPECT_EQ(s(Vector3f(1, 2, 3)), Vector3f(2, -8, 1.5));
@@ -823,7 +823,7 @@ TEST(Transform, CompositionAppliesTheRightFactorFirst) {
     EXPECT_EQ((t * s)(Point3f(0, 0, 0)), Point3f(1, 0, 0));
 }
 
-TEST(Transform, NormalsStayPerpendicularToTangents) {
+TEST(Ex2_13_Transform, NormalsStayPerpendicularToTangents) {
     constexpr int kCases = 5000;
     std::mt19937_64 rng(402);
     LD worstVectorRule = 0;

@@ -80,6 +80,13 @@ class LintTest(unittest.TestCase):
     def test_code_wider_than_the_column(self):
         self.assertLintError(['long-line.md'], 'long-line.md:5', ['columns'])
 
+    def test_chapter_names_the_build_can_order(self):
+        result = run(['python3', os.path.join(TOOLS, 'lint.py'), '--book',
+                      'tests/tools/lint/good.md'])
+        self.assertEqual(result.returncode, 1)
+        self.assertIn('tests/tools/lint/good.md:0: a chapter file is named NN-slug.md',
+                      result.stderr)
+
     def test_missing_chapter_file(self):
         self.assertLintError(['no-such-chapter.md'], 'no-such-chapter.md:0',
                              ['cannot read chapter'])

@@ -705,6 +705,7 @@ inline Vector3<T> Permute(const Vector3<T> &v, int x, int y, int z) {
 template <typename T>
 inline void CoordinateSystem(const Vector3<T> &v1, Vector3<T> *v2,
                              Vector3<T> *v3) {
+    // Complete v1 to an orthonormal frame
     if (std::abs(v1.x) > std::abs(v1.y))
         *v2 = Vector3<T>(-v1.z, 0, v1.x) /
               std::sqrt(v1.x * v1.x + v1.z * v1.z);
@@ -913,6 +914,7 @@ inline Bounds3<T> Union(const Bounds3<T> &b, const Point3<T> &p) {
 // Geometry Inline Functions
 template <typename T>
 inline Bounds3<T> Union(const Bounds3<T> &b1, const Bounds3<T> &b2) {
+    // Compute the union of two boxes
     Bounds3<T> ret;
     ret.pMin = Min(b1.pMin, b2.pMin);
     ret.pMax = Max(b1.pMax, b2.pMax);
@@ -921,6 +923,7 @@ inline Bounds3<T> Union(const Bounds3<T> &b1, const Bounds3<T> &b2) {
 // Geometry Inline Functions
 template <typename T>
 inline Bounds3<T> Intersect(const Bounds3<T> &b1, const Bounds3<T> &b2) {
+    // Compute the intersection of two boxes
     Bounds3<T> ret;
     ret.pMin = Max(b1.pMin, b2.pMin);
     ret.pMax = Min(b1.pMax, b2.pMax);

@@ -163,6 +163,7 @@ inline Vector3<T> Transform::operator()(const Vector3<T> &v) const {
 // Transform Inline Method Definitions
 template <typename T>
 inline Normal3<T> Transform::operator()(const Normal3<T> &n) const {
+    // Transform n by the inverse transpose
     T x = n.x, y = n.y, z = n.z;
     return Normal3<T>(mInv.m[0][0] * x + mInv.m[1][0] * y + mInv.m[2][0] * z,
                       mInv.m[0][1] * x + mInv.m[1][1] * y + mInv.m[2][1] * z,

@@ -1,0 +1,18 @@
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "lrt/means.h"
+#include "lrt/sums.h"
+
+using namespace lrt;
+
+TEST(Ex2_1_Mean, SmallVectors) {
+    EXPECT_DOUBLE_EQ(Mean({1, 2, 3, 4}), 2.5);
+    EXPECT_DOUBLE_EQ(Mean({7}), 7);
+}
+
+TEST(Mean, EmptyVectorThrows) { EXPECT_THROW(Mean({}), std::invalid_argument); }
+
+TEST(Mean, TwiceStillWorks) { EXPECT_EQ(Twice(-4), -8); }

@@ -1,0 +1,520 @@
+"""Tests of the exercise machinery (docs/exercises.md): the markup's lint, the
+student edition's stubs, the tangle filter, the exercise boxes of the weave,
+the kits, the leak check and the validation.
+
+They run on the fixture book in exercises/: two chapters, three exercises (one
+with a generated stub, one with a stub block), public and hidden tests. Each
+broken variant changes one thing in a copy of it, and its test asserts the
+file:line the lint names.
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tarfile
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+TOOLS = os.path.join(ROOT, 'tools')
+FIXTURE = os.path.join(HERE, 'exercises')
+CH1 = 'chapters/01-sums.md'
+CH2 = 'chapters/02-means.md'
+sys.path.insert(0, TOOLS)
+import exercises  # noqa: E402
+import exercise_kits  # noqa: E402
+
+
+def run(cmd, cwd=ROOT):
+    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
+
+
+def read(path):
+    with open(path, encoding='utf-8') as f:
+        return f.read()
+
+
+def write(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, 'w', encoding='utf-8') as f:
+        f.write(text)
+
+
+def line_of(text, needle, occurrence=1):
+    """1-based line number of the occurrence-th line containing needle."""
+    found = [n for n, line in enumerate(text.split('\n'), 1) if needle in line]
+    assert len(found) >= occurrence, 'no %r in fixture' % needle
+    return found[occurrence - 1]
+
+
+class Variant:
+    """A copy of the fixture book in a temporary directory, edited."""
+
+    def __init__(self, test):
+        self.dir = tempfile.mkdtemp()
+        test.addCleanup(shutil.rmtree, self.dir)
+        shutil.copytree(FIXTURE, self.dir, dirs_exist_ok=True)
+
+    def path(self, rel):
+        return os.path.join(self.dir, rel)
+
+    def text(self, rel):
+        return read(self.path(rel))
+
+    def replace(self, rel, old, new, count=1):
+        text = self.text(rel)
+        assert old in text, 'no %r in %s' % (old, rel)
+        write(self.path(rel), text.replace(old, new, count))
+        return self
+
+    def lint(self):
+        chapters = sorted(os.listdir(self.path('chapters')))
+        return run(['python3', os.path.join(TOOLS, 'exercises.py'), 'lint'] +
+                   ['chapters/' + c for c in chapters], cwd=self.dir)
+
+
+class LintTest(unittest.TestCase):
+    def assertLintError(self, variant, where, words):
+        result = variant.lint()
+        self.assertEqual(result.returncode, 1, result.stderr)
+        matching = [l for l in result.stderr.splitlines() if l.startswith(where + ': ')]
+        self.assertTrue(matching, 'no error at %s in:\n%s' % (where, result.stderr))
+        for word in words:
+            self.assertIn(word, matching[0])
+
+    def test_fixture_passes(self):
+        result = Variant(self).lint()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(result.stderr, '')
+
+    def test_begin_without_end(self):
+        v = Variant(self).replace(CH2, '// END SOLUTION\n', '')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), 'BEGIN SOLUTION')),
+                             ['never closed', 'END SOLUTION'])
+
+    def test_end_without_begin(self):
+        v = Variant(self).replace(CH2, '// BEGIN SOLUTION\n', '')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), 'END SOLUTION')),
+                             ['without a matching BEGIN'])
+
+    def test_nested_markers(self):
+        v = Variant(self).replace(CH2, 'double total = 0;\n',
+                                  'double total = 0;\n// BEGIN SOLUTION\n')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), 'BEGIN SOLUTION', 2)),
+                             ['do not nest'])
+
+    def test_marker_in_prose(self):
+        v = Variant(self).replace(CH2, 'Compute the mean of the elements',
+                                  '// END STUB\nCompute the mean of the elements')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), 'END STUB')),
+                             ['outside a code chunk'])
+
+    def test_marker_in_a_code_block_that_is_not_a_chunk(self):
+        v = Variant(self).replace(CH1, 'This chapter adds up numbers.\n',
+                                  'This chapter adds up numbers.\n\n```c++\n'
+                                  '// BEGIN SOLUTION\nint x;\n// END SOLUTION\n```\n')
+        self.assertLintError(v, '%s:6' % CH1, ['outside a code chunk'])
+
+    def test_malformed_marker(self):
+        v = Variant(self).replace(CH2, '// END SOLUTION', '//END SOLUTION')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '//END SOLUTION')),
+                             ['malformed exercise marker'])
+
+    def test_stub_block_must_follow_the_solution(self):
+        v = Variant(self).replace(CH1, '// END SOLUTION\n// BEGIN STUB',
+                                  '// END SOLUTION\n\n// BEGIN STUB')
+        self.assertLintError(v, '%s:%d' % (CH1, line_of(v.text(CH1), 'BEGIN STUB')),
+                             ['must follow END SOLUTION'])
+
+    def test_fragment_use_inside_a_solution(self):
+        v = Variant(self).replace(CH2, 'double total = 0;\n',
+                                  'double total = 0;\n<<lrt/means.h>>\n')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '<<lrt/means.h>>', 2)),
+                             ['fragment use <<lrt/means.h>>', 'solution'])
+
+    def test_exercise_without_id(self):
+        v = Variant(self).replace(CH2, '#ex-2.1 ', '')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['without an id'])
+
+    def test_exercise_without_points(self):
+        v = Variant(self).replace(CH2, 'points=4 ', '')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['ex-2.1', 'no points='])
+
+    def test_points_not_a_number(self):
+        v = Variant(self).replace(CH2, 'points=4 ', 'points=four ')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['points=four', 'positive integer'])
+
+    def test_id_of_another_chapter(self):
+        v = Variant(self).replace(CH2, '#ex-2.1 ', '#ex-3.1 ')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['ex-3.1', "chapter's"])
+
+    def test_exercise_without_hint(self):
+        v = Variant(self).replace(CH2, ' hint="Add in `double`."', '')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['ex-2.1', 'no hint'])
+
+    def test_unknown_section(self):
+        v = Variant(self).replace(CH2, 'section=sec:arithmetic-mean', 'section=sec:nowhere')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['sec:nowhere', 'not the id of a header'])
+
+    def test_duplicate_ids(self):
+        v = Variant(self).replace(CH1, '#ex-1.2 ', '#ex-1.1 ')
+        text = v.text(CH1)
+        self.assertLintError(v, '%s:%d' % (CH1, line_of(text, '#ex-1.1', 2)),
+                             ['duplicate exercise id ex-1.1',
+                              'first at %s:%d' % (CH1, line_of(text, '#ex-1.1'))])
+
+    def test_unknown_fragment(self):
+        v = Variant(self).replace(CH2, 'fragments="Compute the mean of v"',
+                                  'fragments="Compute the mean of v; No such thing"')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['<<No such thing>>', 'not defined in this chapter'])
+
+    def test_solution_that_belongs_to_no_exercise(self):
+        v = Variant(self).replace(CH1, 'inline int Twice(int v) { return 2 * v; }\n',
+                                  'inline int Twice(int v) {\n    // BEGIN SOLUTION\n'
+                                  '    return 2 * v;\n    // END SOLUTION\n}\n')
+        text = v.text(CH1)
+        self.assertLintError(v, '%s:%d' % (CH1, line_of(text, '// BEGIN SOLUTION', 2)),
+                             ['<<Sum inline functions>>', 'belongs to no exercise'])
+
+    def test_exercise_without_tests(self):
+        v = Variant(self).replace('tests/ch02/test_means.cpp', 'TEST(Ex2_1_Mean,',
+                                  'TEST(Mean,')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['ex-2.1 has no tests', 'Ex2_1_', 'tests/ch02/'])
+
+    def test_exercise_without_hidden_tests(self):
+        v = Variant(self)
+        os.remove(v.path('tests/hidden/ch02/test_means_hidden.cpp'))
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['ex-2.1 has no hidden tests', 'tests/hidden/ch02/'])
+
+    def test_no_hidden_tests_needed_without_a_hidden_directory(self):
+        v = Variant(self)
+        shutil.rmtree(v.path('tests/hidden'))
+        result = v.lint()
+        self.assertEqual(result.returncode, 0, result.stderr)
+
+    def test_suite_naming_an_unknown_exercise(self):
+        v = Variant(self).replace('tests/ch02/test_means.cpp', 'TEST(Mean, EmptyVectorThrows)',
+                                  'TEST(Ex2_9_Mean, EmptyVectorThrows)')
+        path = 'tests/ch02/test_means.cpp'
+        self.assertLintError(v, '%s:%d' % (path, line_of(v.text(path), 'Ex2_9_Mean')),
+                             ['Ex2_9_Mean', 'ex-2.9', 'does not exist'])
+
+    def test_hidden_suite_naming_an_unknown_exercise(self):
+        path = 'tests/hidden/ch01/test_sums_hidden.cpp'
+        v = Variant(self).replace(path, 'Ex1_2_ClampHidden', 'Ex1_7_ClampHidden')
+        self.assertLintError(v, '%s:%d' % (path, line_of(v.text(path), 'Ex1_7_')),
+                             ['ex-1.7', 'does not exist'])
+
+    def test_hidden_suite_naming_no_exercise(self):
+        path = 'tests/hidden/ch01/test_sums_hidden.cpp'
+        v = Variant(self).replace(path, 'Ex1_2_ClampHidden', 'ClampHidden')
+        self.assertLintError(v, '%s:%d' % (path, line_of(v.text(path), 'ClampHidden')),
+                             ['names no exercise'])
+
+    def test_suite_of_an_exercise_of_another_chapter(self):
+        path = 'tests/ch02/test_means.cpp'
+        v = Variant(self).replace(path, 'TEST(Mean, TwiceStillWorks)',
+                                  'TEST(Ex1_2_Twice, StillWorks)')
+        self.assertLintError(v, '%s:%d' % (path, line_of(v.text(path), 'Ex1_2_Twice')),
+                             ['ex-1.2 of chapter 01', 'tests/ch01/'])
+
+    def test_malformed_exercise_suite(self):
+        path = 'tests/ch02/test_means.cpp'
+        v = Variant(self).replace(path, 'TEST(Mean, TwiceStillWorks)',
+                                  'TEST(Ex2Mean, TwiceStillWorks)')
+        self.assertLintError(v, '%s:%d' % (path, line_of(v.text(path), 'Ex2Mean')),
+                             ['looks like an exercise', 'ExN_K_Name'])
+
+    def test_make_lint_runs_the_exercise_lint(self):
+        result = run(['make', '-n', 'lint'])
+        self.assertIn('tools/exercises.py lint', result.stdout)
+
+
+class StudentEditionTest(unittest.TestCase):
+    def student(self, chapter):
+        result = run(['python3', os.path.join(TOOLS, 'exercises.py'), 'student', chapter],
+                     cwd=FIXTURE)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        return result.stdout
+
+    def test_generated_stub_names_exercise_fragment_and_section(self):
+        text = self.student(CH1)
+        self.assertNotIn('sumOfSquares', text)
+        self.assertIn('// BEGIN SOLUTION\nthrow std::logic_error(\n', text)
+        message = ''.join(re.findall(r'"((?:[^"\\]|\\.)*)"',
+                                     text.split('throw std::logic_error(')[1].split(');')[0]))
+        self.assertEqual(message, 'Exercise ex-1.1 is not done yet: write <Add up the '
+                         'squares of v> (Section 1.1, Sums of Squares)')
+
+    def test_stub_block_replaces_the_solution(self):
+        text = self.student(CH1)
+        self.assertNotIn('return v < lo', text)
+        self.assertNotIn('BEGIN STUB', text)
+        self.assertNotIn('NOT IMPLEMENTED', text)
+        self.assertIn('// BEGIN SOLUTION\n(void)v;\nthrow std::logic_error(\n'
+                      '    "Exercise ex-1.2 is not done yet', text)
+        # Everything outside the regions is unchanged.
+        original = read(os.path.join(FIXTURE, CH1))
+        self.assertEqual(text.split('<<Add up the squares of v>>=')[0],
+                         original.split('<<Add up the squares of v>>=')[0])
+
+    def test_stub_lines_fit_the_column(self):
+        lines = exercises.throw_lines(' ' * 12, 'Exercise ex-6.12 is not done yet: write <'
+                                      + 'A very long fragment name ' * 5 + '"quoted" \\ '
+                                      + 'x' * 100 + '>')
+        self.assertTrue(all(len(l) <= 80 for l in lines), '\n'.join(lines))
+        literal = ''.join(re.findall(r'"((?:[^"\\]|\\.)*)"', '\n'.join(lines[1:])))
+        self.assertIn('\\"quoted\\" \\\\ ', literal)
+        self.assertTrue(lines[-1].endswith('");'))
+
+    def test_student_chapters_pass_both_lints(self):
+        tmp = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, tmp)
+        shutil.copytree(os.path.join(FIXTURE, 'tests'), os.path.join(tmp, 'tests'))
+        shutil.rmtree(os.path.join(tmp, 'tests', 'hidden'))
+        for chapter in (CH1, CH2):
+            write(os.path.join(tmp, chapter), self.student(chapter))
+        for tool in ('lint.py', 'exercises.py'):
+            cmd = ['python3', os.path.join(TOOLS, tool)] + (['lint'] if tool ==
+                                                            'exercises.py' else [])
+            result = run(cmd + [CH1, CH2], cwd=tmp)
+            self.assertEqual(result.returncode, 0, tool + ': ' + result.stderr)
+
+
+class FilterTest(unittest.TestCase):
+    """tools/tangle.py runs tools/exercise_filter.py: no markers, no stubs."""
+
+    def tangle(self, chapter_dir, *options):
+        out = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, out)
+        chapters = sorted('chapters/' + c for c in os.listdir(os.path.join(chapter_dir,
+                                                                           'chapters')))
+        result = run(['python3', os.path.join(TOOLS, 'tangle.py'), '--out', out] +
+                     list(options) + chapters, cwd=chapter_dir)
+        return result, out
+
+    def test_tangle_has_solutions_and_no_markup(self):
+        result, out = self.tangle(FIXTURE)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        code = read(os.path.join(out, 'lrt', 'sums.h')) + read(os.path.join(out, 'lrt',
+                                                                             'sums.cpp'))
+        self.assertIn('    return v < lo ? lo : (v > hi ? hi : v);\n', code)
+        self.assertIn('sumOfSquares += static_cast<long>(value) * value;', code)
+        for text in ('BEGIN', 'END', 'STUB', '(void)v', 'NOT IMPLEMENTED'):
+            self.assertNotIn(text, code)
+
+    def test_line_directives_survive_dropped_lines(self):
+        v = Variant(self).replace(CH1, '    <<Clamp v to the range>>\n}',
+                                  '    <<Clamp v to the range>>\n    undeclared();\n}')
+        v.replace(CH1, '// END STUB\n@', '// END STUB\nundeclaredToo();\n@')
+        result, out = self.tangle(v.dir, '--line-directives')
+        self.assertEqual(result.returncode, 0, result.stderr)
+        compiled = run(['g++', '-std=c++17', '-fsyntax-only', '-I', out,
+                        os.path.join(out, 'lrt', 'sums.cpp')], cwd=v.dir)
+        text = v.text(CH1)
+        self.assertIn('%s:%d:' % (CH1, line_of(text, 'undeclared();')), compiled.stderr)
+        self.assertIn('%s:%d:' % (CH1, line_of(text, 'undeclaredToo();')), compiled.stderr)
+
+    def test_broken_markup_stops_the_tangle(self):
+        v = Variant(self).replace(CH2, '// END SOLUTION\n', '')
+        result, _ = self.tangle(v.dir)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn('exercise_filter: %s:' % CH2, result.stderr)
+        self.assertIn('never closed', result.stderr)
+
+
+class WeaveTest(unittest.TestCase):
+    def test_exercise_box(self):
+        result = run(['pandoc', CH1, '--lua-filter', os.path.join(TOOLS, 'exercises.lua'),
+                      '--lua-filter', os.path.join(TOOLS, 'weave.lua'), '-t', 'latex'],
+                     cwd=FIXTURE)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        latex = result.stdout
+        self.assertIn('\\label{ex-1.1}\\textbf{Exercise 1.1}', latex)
+        self.assertIn('\\textsf{3 points}', latex)
+        self.assertIn('\\emph{Hint:} Square in \\texttt{long}', latex)
+        self.assertIn('\\emph{Hint:} Two comparisons suffice; see', latex)
+        self.assertIn('\\hyperref[sec:clamping]', latex)
+        self.assertIn('\\textsf{Tests:}~\\texttt{Ex1\\_2\\_*}', latex)
+        self.assertIn('\\fragmentname{Clamp v to the range}{}', latex)
+        for text in ('BEGIN SOLUTION', 'END SOLUTION', 'BEGIN STUB', 'NOT IMPLEMENTED',
+                     '(void)v'):
+            self.assertNotIn(text, latex)
+        self.assertIn('\\NormalTok{ lo }\\OperatorTok{?}\\NormalTok{ lo }', latex)
+
+
+def build_kits(test, src, out, chapters=(), book=False):
+    result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build', '--src', src,
+                  '--out', out] + ([] if book else ['--no-book']) + list(chapters))
+    test.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+    return result
+
+
+class KitTest(unittest.TestCase):
+    """One pair of kits of the whole fixture book, with its PDFs."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.out = tempfile.mkdtemp()
+        cls.result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build',
+                          '--src', FIXTURE, '--out', cls.out])
+        cls.student = os.path.join(cls.out, 'student')
+        cls.solution = os.path.join(cls.out, 'solution')
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.out)
+
+    def setUp(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stdout + self.result.stderr)
+
+    def test_student_kit(self):
+        s = self.student
+        for rel in ('Makefile', 'README.md', 'book.pdf', 'exercises.json', 'book.md',
+                    CH1, CH2, 'tests/ch01/test_sums.cpp', 'tools/exercises.mk',
+                    'tools/tangle.py', 'tests/tools/test_toolchain.py',
+                    'tangled/lrt/sums.cpp'):
+            self.assertTrue(os.path.isfile(os.path.join(s, rel)), rel)
+        for rel in ('tests/hidden', 'build', 'tests/tools/exercises',
+                    'tests/tools/test_exercises.py'):
+            self.assertFalse(os.path.exists(os.path.join(s, rel)), rel)
+        tangled = read(os.path.join(s, 'tangled/lrt/sums.cpp'))
+        self.assertIn('"Exercise ex-1.1 is not done yet: write <Add up the squares of v> "',
+                      tangled)
+        self.assertNotIn('BEGIN SOLUTION', tangled)
+        readme = read(os.path.join(s, 'README.md'))
+        self.assertIn("make test CH=01 GTEST_FILTER='Ex1_1_*'", readme)
+        self.assertIn('| 1.2 | 2 | Clamping | `chapters/01-sums.md` | Section 1.2 | `Ex1_2_*` |',
+                      readme)
+        self.assertNotIn('{{', readme)
+        manifest = json.loads(read(os.path.join(s, 'exercises.json')))
+        self.assertEqual([e['id'] for e in manifest['exercises']], ['ex-1.1', 'ex-1.2',
+                                                                    'ex-2.1'])
+        self.assertEqual(manifest['points'], 9)
+        self.assertNotIn('hidden_tests', manifest['exercises'][0])
+        with open(os.path.join(s, 'book.pdf'), 'rb') as f:
+            pdf = exercise_kits.pdf_text(f.read())
+        self.assertIn('Exercise 1.2', pdf)
+        self.assertIn('Hint: Two comparisons suffice', pdf)
+        self.assertIn('"Exercise ex-2.1 is not done yet', pdf)
+
+    def test_solution_kit(self):
+        s = self.solution
+        self.assertTrue(os.path.isfile(os.path.join(s, 'tests/hidden/ch01/test_sums_hidden.cpp')))
+        self.assertEqual(read(os.path.join(s, CH1)), read(os.path.join(FIXTURE, CH1)))
+        tangled = read(os.path.join(s, 'tangled/lrt/sums.cpp'))
+        self.assertIn('sumOfSquares += static_cast<long>(value) * value;', tangled)
+        self.assertNotIn('BEGIN SOLUTION', tangled)
+        manifest = json.loads(read(os.path.join(s, 'exercises.json')))
+        self.assertEqual(manifest['exercises'][2]['hidden_tests'],
+                         ['Ex2_1_MeanHiddenCases.MixedSignsCancel'])
+
+    def test_tarballs(self):
+        for edition in ('student', 'solution'):
+            with tarfile.open(os.path.join(self.out, 'lrt-%s.tar.gz' % edition)) as tar:
+                names = set(tar.getnames())
+            self.assertIn('lrt-%s/%s' % (edition, CH1), names)
+            self.assertIn('lrt-%s/book.pdf' % edition, names)
+            self.assertEqual(any('/tests/hidden/' in n for n in names),
+                             edition == 'solution')
+
+    def copy_of_student_kit(self):
+        out = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, out)
+        shutil.copytree(self.student, os.path.join(out, 'student'))
+        return out
+
+    def leaks(self, out, edition='student'):
+        return exercise_kits.leaks(out, FIXTURE, edition)
+
+    def test_no_leaks(self):
+        self.assertEqual(self.leaks(self.out), [])
+
+    def test_planted_solution_line_is_found(self):
+        out = self.copy_of_student_kit()
+        path = os.path.join(out, 'student', 'tests', 'ch01', 'test_sums.cpp')
+        write(path, read(path) + '// return total / static_cast<double>( v.size() );\n')
+        problems = self.leaks(out)
+        self.assertEqual(len(problems), 1, problems)
+        self.assertIn('student/tests/ch01/test_sums.cpp:%d: solution of ex-2.1 (%s:%d)'
+                      % (line_of(read(path), 'total /'), CH2,
+                         line_of(read(os.path.join(FIXTURE, CH2)), 'total /')), problems[0])
+
+    def test_planted_hidden_test_name_is_found(self):
+        out = self.copy_of_student_kit()
+        path = os.path.join(out, 'student', 'README.md')
+        write(path, read(path) + '\nGrading also runs MixedSignsCancel.\n')
+        problems = self.leaks(out)
+        self.assertEqual(len(problems), 1, problems)
+        self.assertIn('student/README.md:', problems[0])
+        self.assertIn('hidden test name MixedSignsCancel', problems[0])
+
+    def test_leaks_in_the_pdf_and_tarball_are_found(self):
+        # The solution kit, checked as if it were a student kit, leaks
+        # everywhere: in its chapters, its tangle, its hidden tests, the text
+        # of its PDF and its tarball.
+        problems = '\n'.join(self.leaks(self.out, 'solution'))
+        for where in ('solution/book.pdf:', 'solution/tangled/lrt/sums.cpp:',
+                      'solution/chapters/02-means.md:', 'lrt-solution.tar.gz:lrt-solution/'
+                      'book.pdf:', 'solution/tests/hidden/ch01/test_sums_hidden.cpp: a '
+                      'hidden test file'):
+            self.assertIn(where, problems)
+        self.assertRegex(problems, r'solution/book.pdf:\d+: solution of ex-1.2 '
+                         r'\(chapters/01-sums.md:\d+\): return v < lo')
+
+    def test_chosen_chapters(self):
+        out = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, out)
+        build_kits(self, FIXTURE, out, ['2'])
+        student = os.path.join(out, 'student')
+        # Chapter 1 is not chosen: it stays as written, with its solutions.
+        self.assertEqual(read(os.path.join(student, CH1)), read(os.path.join(FIXTURE, CH1)))
+        self.assertIn('Exercise ex-2.1 is not done yet', read(os.path.join(student, CH2)))
+        manifest = json.loads(read(os.path.join(student, 'exercises.json')))
+        self.assertEqual([e['id'] for e in manifest['exercises']], ['ex-2.1'])
+        self.assertEqual(exercise_kits.leaks(out, FIXTURE), [])
+
+    def test_unknown_chapter_is_an_error(self):
+        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build', '--src',
+                      FIXTURE, '--out', os.path.join(self.out, 'x'), '--no-book', '07'])
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn('no chapter 07', result.stderr)
+
+
+class ValidationTest(unittest.TestCase):
+    def test_a_stub_that_passes_its_tests_is_caught(self):
+        # Exercise 1.2's stub block holds the solution, so its tests pass in the
+        # student edition; exercise 1.1 is fine.
+        v = Variant(self).replace(CH1, '(void)v;\n// NOT IMPLEMENTED\n',
+                                  'return v < lo ? lo : (v > hi ? hi : v);\n')
+        out = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, out)
+        build_kits(self, v.dir, out, ['01'])
+        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'validate',
+                      '--out', out])
+        self.assertNotEqual(result.returncode, 0)
+        self.assertRegex(result.stdout, r'solution edition: 7 test runs, 7 passed, 0 failed')
+        self.assertRegex(result.stdout, r'student edition: 7 test runs, 4 passed, 3 failed')
+        problems = [l for l in result.stderr.splitlines() if l.startswith('student:')]
+        self.assertEqual(len(problems), 2, result.stderr)
+        self.assertIn('Ex1_2_Clamp.InsideAndOutside passes with the stub of ex-1.2',
+                      problems[0])
+        self.assertIn('Ex1_2_ClampHidden.RangeOfOneValue passes with the stub of ex-1.2',
+                      problems[1])
+        self.assertIn('validation failed (2 problems)', result.stderr)
+
+
+if __name__ == '__main__':
+    unittest.main()

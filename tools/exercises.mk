@@ -1,0 +1,42 @@
+# Exercises: a student kit and a solution kit built from the chapters; the
+# markup and the kits are described in docs/exercises.md. Included by the
+# Makefile, so these run from the repository root:
+#
+#   make exercises [CHAPTERS="03 05"]   build/exercises/student/ and solution/,
+#                       with lrt-student.tar.gz and lrt-solution.tar.gz, for the
+#                       exercises of the chapters given by number (default: all);
+#                       fails if the student kit leaks a solution or a hidden test
+#   make validate-exercises [CHAPTERS=...]  build the kits, then check that the
+#                       solution kit passes every public and hidden test as of
+#                       every chapter, and that the student kit compiles, fails
+#                       every test of every chosen exercise and passes all others
+#   make test-hidden [CH=05]  the hidden tests (tests/hidden/chNN/) against the
+#                       code as of each chapter, as make test runs the public ones
+#   make lint-exercises  the exercise markup and test names (part of make lint)
+
+.PHONY: exercises validate-exercises test-hidden lint-exercises
+
+# Here CHAPTERS may name chapter numbers; everywhere else it lists chapter files.
+EXERCISE_CHAPTERS := $(filter-out %.md,$(CHAPTERS))
+EXERCISES_OUT := $(BUILD)/exercises
+
+exercises: | deps
+	python3 tools/exercise_kits.py build --out $(EXERCISES_OUT) $(EXERCISE_CHAPTERS)
+
+validate-exercises: exercises
+	python3 tools/exercise_kits.py validate --out $(EXERCISES_OUT)
+
+lint: lint-exercises
+
+lint-exercises:
+	python3 tools/exercises.py lint $(filter %.md,$(CHAPTERS))
+
+test-hidden: lint
+	@bins=(); \
+	for n in $(PREFIXES); do \
+	    $(ASOF) ASOF=$$n ONLY=$(CH) tangle; \
+	    $(ASOF) -f tools/hidden.mk ASOF=$$n ONLY=$(CH) -j$(JOBS) hidden-tests; \
+	    bins+=($$($(ASOF) -f tools/hidden.mk -s ASOF=$$n ONLY=$(CH) list-hidden-tests)); \
+	done; \
+	if [ $${#bins[@]} -eq 0 ]; then echo "test-hidden: no hidden tests"; exit 0; fi; \
+	python3 tools/runtests.py "$${bins[@]}"

@@ -72,5 +72,3 @@ clean:
 	rm -rf $(BUILD) compile_commands.json
 
 include tools/exercises.mk
-include tools/bench.mk
-include tools/grade.mk

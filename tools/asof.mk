@@ -11,7 +11,9 @@ CXX ?= g++
 VARIANT := $(if $(SANITIZE),sanitize,$(if $(filter double,$(FLOAT)),double,float))
 SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all
 OPT := $(if $(SANITIZE),-O1 $(SANITIZERS) -fno-omit-frame-pointer,-O2)
-CXXFLAGS := -std=c++17 -g $(OPT) -Wall -Wextra -Werror \
+# -ffp-contract=off: a fused multiply-add would break the exact sign symmetry
+# of the watertight triangle test's edge functions (Chapter 3).
+CXXFLAGS := -std=c++17 -g $(OPT) -ffp-contract=off -Wall -Wextra -Werror \
             $(if $(filter double,$(FLOAT)),-DLRT_FLOAT_AS_DOUBLE)
 LDFLAGS := $(if $(SANITIZE),$(SANITIZERS))
 

@@ -7,3 +7,12 @@
 // lrt.h includes
 #include "lrt/core/transform.h"
 #include "lrt/core/interaction.h"
+// lrt.h includes
+#include "lrt/core/efloat.h"
+#include "lrt/core/shape.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/shapes/sphere.h"
+// lrt.h includes
+#include "lrt/shapes/triangle.h"
+// lrt.h includes
+#include "lrt/core/plyreader.h"

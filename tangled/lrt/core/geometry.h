@@ -1031,6 +1031,22 @@ inline std::ostream &operator<<(std::ostream &os, const Bounds2<T> &b) {
     return os;
 }
 // Geometry Inline Functions
+inline Point3f OffsetRayOrigin(const Point3f &p, const Vector3f &pError,
+                               const Normal3f &n, const Vector3f &w) {
+    Float d = Dot(Abs(n), pError);
+    Vector3f offset = d * Vector3f(n);
+    if (Dot(w, n) < 0) offset = -offset;
+    Point3f po = p + offset;
+    // Round offset point po away from p
+    for (int i = 0; i < 3; ++i) {
+        if (offset[i] > 0)
+            po[i] = NextFloatUp(po[i]);
+        else if (offset[i] < 0)
+            po[i] = NextFloatDown(po[i]);
+    }
+    return po;
+}
+// Geometry Inline Functions
 template <typename T>
 inline bool Bounds3<T>::IntersectP(const Ray &ray, Float *hitt0,
                                    Float *hitt1) const {

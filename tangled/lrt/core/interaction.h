@@ -20,6 +20,24 @@ struct Interaction {
     }
     // Interaction Public Methods
     bool IsSurfaceInteraction() const { return n != Normal3f(); }
+    // Interaction Public Methods
+    Ray SpawnRay(const Vector3f &d) const {
+        Point3f o = OffsetRayOrigin(p, pError, n, d);
+        return Ray(o, d, Infinity, time);
+    }
+    // Interaction Public Methods
+    Ray SpawnRayTo(const Point3f &p2) const {
+        Point3f o = OffsetRayOrigin(p, pError, n, p2 - p);
+        Vector3f d = p2 - o;
+        return Ray(o, d, 1 - ShadowEpsilon, time);
+    }
+    // Interaction Public Methods
+    Ray SpawnRayTo(const Interaction &it) const {
+        Point3f o = OffsetRayOrigin(p, pError, n, it.p - p);
+        Point3f target = OffsetRayOrigin(it.p, it.pError, it.n, o - it.p);
+        Vector3f d = target - o;
+        return Ray(o, d, 1 - ShadowEpsilon, time);
+    }
     // Interaction Public Data
     Point3f p;
     Float time = 0;

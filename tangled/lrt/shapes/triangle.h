@@ -1,0 +1,80 @@
+// lrt/shapes/triangle.h: tangled from chapters/03-shapes.md. Edit the chapter, not this file.
+#pragma once
+
+#include "lrt/core/geometry.h"
+#include "lrt/core/interaction.h"
+#include "lrt/core/shape.h"
+#include "lrt/core/transform.h"
+
+#include <memory>
+#include <vector>
+
+namespace lrt {
+
+// TriangleMesh Declarations
+struct TriangleMesh {
+    // TriangleMesh Public Methods
+    TriangleMesh(const Transform &ObjectToWorld, bool reverseOrientation,
+                 int nTriangles, const int *vertexIndices, int nVertices,
+                 const Point3f *P, const Vector3f *S, const Normal3f *N,
+                 const Point2f *UV, const int *faceIndices = nullptr);
+    // TriangleMesh Data
+    const int nTriangles, nVertices;
+    std::vector<int> vertexIndices;
+    std::vector<Point3f> p;
+    std::vector<Normal3f> n;
+    std::vector<Vector3f> s;
+    std::vector<Point2f> uv;
+    std::vector<int> faceIndices;
+};
+
+// Triangle Declarations
+class Triangle : public Shape {
+  public:
+    // Triangle Public Methods
+    Triangle(const Transform *ObjectToWorld, const Transform *WorldToObject,
+             bool reverseOrientation, const std::shared_ptr<TriangleMesh> &mesh,
+             int triNumber)
+        : Shape(ObjectToWorld, WorldToObject, reverseOrientation), mesh(mesh) {
+        v = &mesh->vertexIndices[3 * size_t(triNumber)];
+        faceIndex = mesh->faceIndices.empty() ? 0
+                                              : mesh->faceIndices[triNumber];
+    }
+    // Triangle Public Methods
+    Bounds3f ObjectBound() const override;
+    Bounds3f WorldBound() const override;
+    // Triangle Public Methods
+    bool Intersect(const Ray &ray, Float *tHit, SurfaceInteraction *isect,
+                   bool testAlphaTexture = true) const override;
+    bool IntersectP(const Ray &ray,
+                    bool testAlphaTexture = true) const override;
+    // Triangle Public Methods
+    Float Area() const override;
+
+  private:
+    // Triangle Private Methods
+    void GetUVs(Point2f uv[3]) const {
+        if (!mesh->uv.empty()) {
+            uv[0] = mesh->uv[v[0]];
+            uv[1] = mesh->uv[v[1]];
+            uv[2] = mesh->uv[v[2]];
+        } else {
+            uv[0] = Point2f(0, 0);
+            uv[1] = Point2f(1, 0);
+            uv[2] = Point2f(1, 1);
+        }
+    }
+    // Triangle Private Data
+    std::shared_ptr<TriangleMesh> mesh;
+    const int *v;
+    int faceIndex;
+};
+
+// Triangle Function Declarations
+std::vector<std::shared_ptr<Shape>> CreateTriangleMesh(
+    const Transform *ObjectToWorld, const Transform *WorldToObject,
+    bool reverseOrientation, int nTriangles, const int *vertexIndices,
+    int nVertices, const Point3f *p, const Vector3f *s, const Normal3f *n,
+    const Point2f *uv, const int *faceIndices = nullptr);
+
+}  // namespace lrt

@@ -1,0 +1,130 @@
+// Double-precision helpers shared by the quadric oracles of
+// test_sphere.cpp and test_disk.cpp: a small vector type, conversions to and
+// from lrt's types, a seeded random source, and affine transformations with
+// inverses written down from their factors (independent of lrt's Inverse).
+#pragma once
+
+#include "lrt/lrt.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+
+namespace {
+
+typedef long double LD;
+
+struct D3 {
+    double x = 0, y = 0, z = 0;
+    D3() {}
+    D3(double x, double y, double z) : x(x), y(y), z(z) {}
+    double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+D3 operator+(D3 a, D3 b) { return D3(a.x + b.x, a.y + b.y, a.z + b.z); }
+D3 operator-(D3 a, D3 b) { return D3(a.x - b.x, a.y - b.y, a.z - b.z); }
+D3 operator*(double s, D3 a) { return D3(s * a.x, s * a.y, s * a.z); }
+double dot3(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+D3 cross3(D3 a, D3 b) {
+    return D3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+              a.x * b.y - a.y * b.x);
+}
+double len3(D3 a) { return std::sqrt(dot3(a, a)); }
+D3 norm3(D3 a) { return (1 / len3(a)) * a; }
+double dist3(D3 a, D3 b) { return len3(a - b); }
+
+D3 ToD(const lrt::Point3f &p) { return D3(p.x, p.y, p.z); }
+D3 ToD(const lrt::Vector3f &v) { return D3(v.x, v.y, v.z); }
+D3 ToD(const lrt::Normal3f &n) { return D3(n.x, n.y, n.z); }
+lrt::Point3f ToP(D3 a) { return lrt::Point3f(a.x, a.y, a.z); }
+lrt::Vector3f ToV(D3 a) { return lrt::Vector3f(a.x, a.y, a.z); }
+
+// Rounds a double to the nearest Float. The volatile keeps GCC 12.2 at -O2
+// from folding two adjacent float truncations and extensions into a no-op
+// when its SLP vectorizer combines them (a miscompilation observed with
+// Debian's g++ 12.2.0).
+double ToFloat(double x) {
+    volatile lrt::Float f = lrt::Float(x);
+    return f;
+}
+
+const double kPi = 3.14159265358979323846;
+const double eps = (double)lrt::MachineEpsilon;
+
+struct Rng {
+    std::mt19937_64 g;
+    explicit Rng(uint64_t seed) : g(seed) {}
+    double U(double a = 0, double b = 1) {
+        return std::uniform_real_distribution<double>(a, b)(g);
+    }
+    D3 Dir() {
+        double z = U(-1, 1), phi = U(0, 2 * kPi), s = std::sqrt(1 - z * z);
+        return D3(s * std::cos(phi), s * std::sin(phi), z);
+    }
+    D3 InBall(double r) { return (r * std::cbrt(U())) * Dir(); }
+};
+
+// An affine transformation M = T * R * S in double precision, with its
+// inverse written down from the factors.
+struct Affine {
+    double m[3][4], inv[3][4];
+    bool mirror = false;
+    double norm = 1;  // largest scale factor of the linear part
+    double cond = 1;  // largest over smallest scale factor
+    double minScale = 1;
+    static Affine Make(D3 scale, D3 axis, double angleDeg, D3 translate) {
+        Affine a;
+        D3 k = norm3(axis);
+        double th = angleDeg * kPi / 180, c = std::cos(th), s = std::sin(th);
+        double R[3][3] = {
+            {c + k.x * k.x * (1 - c), k.x * k.y * (1 - c) - k.z * s,
+             k.x * k.z * (1 - c) + k.y * s},
+            {k.y * k.x * (1 - c) + k.z * s, c + k.y * k.y * (1 - c),
+             k.y * k.z * (1 - c) - k.x * s},
+            {k.z * k.x * (1 - c) - k.y * s, k.z * k.y * (1 - c) + k.x * s,
+             c + k.z * k.z * (1 - c)}};
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) {
+                a.m[i][j] = R[i][j] * scale[j];
+                a.inv[i][j] = R[j][i] / scale[i];
+            }
+            a.m[i][3] = translate[i];
+        }
+        for (int i = 0; i < 3; ++i)
+            a.inv[i][3] = -(a.inv[i][0] * translate.x +
+                            a.inv[i][1] * translate.y +
+                            a.inv[i][2] * translate.z);
+        a.mirror = scale.x * scale.y * scale.z < 0;
+        a.norm = std::max({std::abs(scale.x), std::abs(scale.y),
+                           std::abs(scale.z)});
+        a.minScale = std::min({std::abs(scale.x), std::abs(scale.y),
+                               std::abs(scale.z)});
+        a.cond = a.norm / a.minScale;
+        return a;
+    }
+    D3 Point(D3 p) const { return Apply(m, p, 1); }
+    D3 Vector(D3 v) const { return Apply(m, v, 0); }
+    D3 InvPoint(D3 p) const { return Apply(inv, p, 0 + 1); }
+    D3 InvVector(D3 v) const { return Apply(inv, v, 0); }
+    D3 Normal(D3 n) const {  // inverse transpose
+        return D3(inv[0][0] * n.x + inv[1][0] * n.y + inv[2][0] * n.z,
+                  inv[0][1] * n.x + inv[1][1] * n.y + inv[2][1] * n.z,
+                  inv[0][2] * n.x + inv[1][2] * n.y + inv[2][2] * n.z);
+    }
+    static D3 Apply(const double a[3][4], D3 p, double w) {
+        return D3(a[0][0] * p.x + a[0][1] * p.y + a[0][2] * p.z + a[0][3] * w,
+                  a[1][0] * p.x + a[1][1] * p.y + a[1][2] * p.z + a[1][3] * w,
+                  a[2][0] * p.x + a[2][1] * p.y + a[2][2] * p.z + a[2][3] * w);
+    }
+    lrt::Transform ToTransform() const {
+        lrt::Matrix4x4 mm, mi;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 4; ++j) {
+                mm.m[i][j] = lrt::Float(m[i][j]);
+                mi.m[i][j] = lrt::Float(inv[i][j]);
+            }
+        return lrt::Transform(mm, mi);
+    }
+};
+
+}  // namespace

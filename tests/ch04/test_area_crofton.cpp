@@ -1,0 +1,283 @@
+// Chapter 4: Monte Carlo estimates of the shapes' areas from random lines
+// (the Cauchy-Crofton formula), using nothing but the shapes' Intersect().
+//
+// For lines L chosen uniformly among those that meet a ball of radius R that
+// contains the surface S (direction uniform on the sphere, then a point
+// uniform on the disk of radius R perpendicular to it),
+//
+//     A(S) = 2 pi R^2 E[n_S(L)],
+//
+// where n_S(L) is the number of points where L crosses S. The test counts
+// crossings by tracing a ray along the line and, after each hit, spawning a
+// continuation ray from the hit point in the same direction.
+
+#include "lrt/lrt.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace lrt;
+
+namespace {
+
+// Random lines per shape, and the agreement required between the estimate
+// and Area(), in standard errors of the estimate.
+constexpr int kLinesPerShape = 1 << 17;
+constexpr double kStandardErrors = 4;
+// Random partial spheres, disks and triangles.
+constexpr int kCroftonSpheres = 6;
+constexpr int kCroftonDisks = 4;
+constexpr int kCroftonTriangles = 4;
+// No line crosses these shapes more than twice; a count above this limit
+// means that a continuation ray found the same surface point again.
+constexpr int kMaxCrossings = 4;
+// Radius of the bounding ball of a sphere, relative to the sphere's radius.
+// (With a margin, even the lines through a whole sphere vary in their
+// number of crossings, so the standard error is positive.)
+constexpr double kBallMargin = 1.1;
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Vec {
+    double x, y, z;
+};
+
+struct CroftonEstimate {
+    double area, standardError;
+    int maxCount;
+};
+
+// Counts the points where the line through o with direction d crosses the
+// shape; o is outside the ball that bounds the shape, so every crossing is
+// at t > 0.
+int CountCrossings(const Shape &shape, Ray ray) {
+    int n = 0;
+    Float tHit;
+    SurfaceInteraction isect;
+    while (n <= kMaxCrossings && shape.Intersect(ray, &tHit, &isect)) {
+        ++n;
+        ray = isect.SpawnRay(ray.d);
+    }
+    return n;
+}
+
+CroftonEstimate EstimateArea(const Shape &shape, const Vec &center, double R,
+                             uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(0, 1);
+    double sum = 0, sum2 = 0;
+    int maxCount = 0;
+    for (int i = 0; i < kLinesPerShape; ++i) {
+        // Direction uniform on the sphere: z uniform in [-1, 1] (the
+        // hat-box theorem), azimuth uniform.
+        double wz = 1 - 2 * U(rng), phi = 2 * kPi * U(rng);
+        double s = std::sqrt(std::max(0.0, 1 - wz * wz));
+        Vec w{s * std::cos(phi), s * std::sin(phi), wz};
+        // An orthonormal basis (e1, e2) of the plane perpendicular to w.
+        Vec e1 = std::abs(w.x) > std::abs(w.y)
+                     ? Vec{-w.z, 0, w.x} : Vec{0, w.z, -w.y};
+        double l1 = std::sqrt(e1.x * e1.x + e1.y * e1.y + e1.z * e1.z);
+        e1 = {e1.x / l1, e1.y / l1, e1.z / l1};
+        Vec e2{w.y * e1.z - w.z * e1.y, w.z * e1.x - w.x * e1.z,
+               w.x * e1.y - w.y * e1.x};
+        // A point uniform on the disk of radius R in that plane.
+        double rho = R * std::sqrt(U(rng)), alpha = 2 * kPi * U(rng);
+        double a = rho * std::cos(alpha), b = rho * std::sin(alpha);
+        Vec o{center.x + a * e1.x + b * e2.x - 2 * R * w.x,
+              center.y + a * e1.y + b * e2.y - 2 * R * w.y,
+              center.z + a * e1.z + b * e2.z - 2 * R * w.z};
+        Ray ray(Point3f(Float(o.x), Float(o.y), Float(o.z)),
+                Vector3f(Float(w.x), Float(w.y), Float(w.z)));
+        int n = CountCrossings(shape, ray);
+        maxCount = std::max(maxCount, n);
+        sum += n;
+        sum2 += double(n) * n;
+    }
+    double N = kLinesPerShape;
+    double mean = sum / N;
+    double variance = std::max(0.0, (sum2 - N * mean * mean) / (N - 1));
+    double scale = 2 * kPi * R * R;
+    return {scale * mean, scale * std::sqrt(variance / N), maxCount};
+}
+
+// How far the value is from the estimate, in standard errors.
+double Deviation(double value, const CroftonEstimate &e) {
+    return std::abs(value - e.area) / e.standardError;
+}
+
+// A random rigid motion.
+Transform RandomRigid(std::mt19937_64 &rng) {
+    std::uniform_real_distribution<double> U(-1, 1);
+    Vector3f axis(Float(U(rng)), Float(U(rng)), Float(U(rng)) + Float(1.5));
+    return Translate(Vector3f(Float(5 * U(rng)), Float(5 * U(rng)),
+                              Float(5 * U(rng)))) *
+           Rotate(Float(180 * U(rng)), axis);
+}
+
+Vec Apply(const Transform &t, const Point3f &p) {
+    Point3f q = t(p);
+    return {q.x, q.y, q.z};
+}
+
+void ExpectAgreement(double area, const CroftonEstimate &e,
+                     const std::string &what) {
+    EXPECT_LE(e.maxCount, 2) << what;
+    EXPECT_GT(e.standardError, 0) << what;
+    EXPECT_LE(Deviation(area, e), kStandardErrors)
+        << what << ": Area() " << area << ", estimate " << e.area << " +- "
+        << e.standardError;
+}
+
+}  // namespace
+
+// The constant of the estimator, checked on the whole sphere of radius r in
+// a ball of radius 1.5 r: every line through the sphere crosses it twice.
+TEST(CauchyCrofton, WholeSphereChecksTheConstant) {
+    Transform identity;
+    const Float r = 2;
+    Sphere sphere(&identity, &identity, false, r, -r, r, 360);
+    CroftonEstimate e = EstimateArea(sphere, {0, 0, 0}, 1.5 * r, 0x5eed0421);
+    ExpectAgreement(4 * kPi * r * r, e, "whole sphere");
+    ExpectAgreement(sphere.Area(), e, "whole sphere");
+}
+
+TEST(CauchyCrofton, PartialSpheres) {
+    std::mt19937_64 rng(0x5eed0422);
+    std::uniform_real_distribution<double> U(0, 1);
+    for (int i = 0; i < kCroftonSpheres; ++i) {
+        Transform toWorld = RandomRigid(rng), toObject = Inverse(toWorld);
+        Float r = Float(0.3 + 3 * U(rng));
+        Float z0, z1;
+        do {
+            z0 = Float((2 * U(rng) - 1) * r);
+            z1 = Float((2 * U(rng) - 1) * r);
+        } while (std::abs(z1 - z0) < 0.1f * r);
+        if (i == 0) z0 = -r, z1 = r;  // a whole sphere
+        if (i == 1) z0 = 0, z1 = r;   // a hemisphere
+        Float phi = (i < 2) ? 360 : Float(30 + 330 * U(rng));
+        Sphere sphere(&toWorld, &toObject, i % 2 == 1, r, z0, z1, phi);
+        CroftonEstimate e = EstimateArea(
+            sphere, Apply(toWorld, Point3f(0, 0, 0)), kBallMargin * r,
+            0x5eed0430 + i);
+        ExpectAgreement(sphere.Area(), e,
+                        "sphere r=" + std::to_string(r) + " z=[" +
+                            std::to_string(std::min(z0, z1)) + ", " +
+                            std::to_string(std::max(z0, z1)) +
+                            "] phiMax=" + std::to_string(phi));
+    }
+}
+
+// Sphere::Area() is an object-space area: under a uniform scale by s the
+// world-space area, which the lines measure, is s^2 times larger.
+TEST(CauchyCrofton, UniformlyScaledSphere) {
+    std::mt19937_64 rng(0x5eed0423);
+    const Float s = 2.5f, r = 0.8f;
+    Transform toWorld = RandomRigid(rng) * Scale(s, s, s);
+    Transform toObject = Inverse(toWorld);
+    Sphere sphere(&toWorld, &toObject, false, r, -0.3f, 0.7f, 250);
+    CroftonEstimate e = EstimateArea(
+        sphere, Apply(toWorld, Point3f(0, 0, 0)), s * r, 0x5eed0424);
+    ExpectAgreement(s * s * sphere.Area(), e, "scaled sphere");
+    EXPECT_GT(Deviation(sphere.Area(), e), kStandardErrors);
+}
+
+TEST(CauchyCrofton, Disks) {
+    std::mt19937_64 rng(0x5eed0425);
+    std::uniform_real_distribution<double> U(0, 1);
+    for (int i = 0; i < kCroftonDisks; ++i) {
+        Transform toWorld = RandomRigid(rng), toObject = Inverse(toWorld);
+        Float r = Float(0.3 + 3 * U(rng));
+        Float ri = (i == 0) ? 0 : Float(0.8 * U(rng) * r);
+        Float h = Float(2 * U(rng) - 1);
+        Float phi = (i < 2) ? 360 : Float(30 + 330 * U(rng));
+        Disk disk(&toWorld, &toObject, false, h, r, ri, phi);
+        CroftonEstimate e = EstimateArea(
+            disk, Apply(toWorld, Point3f(0, 0, h)), r, 0x5eed0440 + i);
+        ExpectAgreement(disk.Area(), e,
+                        "disk r=" + std::to_string(r) +
+                            " ri=" + std::to_string(ri) +
+                            " phiMax=" + std::to_string(phi));
+    }
+}
+
+// Triangles of a mesh with a general affine transformation: the lines see
+// the world-space triangle, and so must Area().
+TEST(CauchyCrofton, Triangles) {
+    std::mt19937_64 rng(0x5eed0426);
+    std::uniform_real_distribution<double> U(-1, 1);
+    for (int i = 0; i < kCroftonTriangles; ++i) {
+        Point3f P[3];
+        for (Point3f &p : P)
+            p = Point3f(Float(U(rng)), Float(U(rng)), Float(U(rng)));
+        Matrix4x4 m;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c)
+                m.m[r][c] = Float((r == c ? 1.5 : 0) + 0.6 * U(rng));
+        Transform toWorld(m), toObject = Inverse(toWorld);
+        int indices[3] = {0, 1, 2};
+        std::vector<std::shared_ptr<Shape>> tri = CreateTriangleMesh(
+            &toWorld, &toObject, false, 1, indices, 3, P, nullptr, nullptr,
+            nullptr);
+        Vec w[3];
+        for (int k = 0; k < 3; ++k) w[k] = Apply(toWorld, P[k]);
+        Vec c{(w[0].x + w[1].x + w[2].x) / 3, (w[0].y + w[1].y + w[2].y) / 3,
+              (w[0].z + w[1].z + w[2].z) / 3};
+        double R = 0;
+        for (const Vec &v : w)
+            R = std::max(R, std::sqrt((v.x - c.x) * (v.x - c.x) +
+                                      (v.y - c.y) * (v.y - c.y) +
+                                      (v.z - c.z) * (v.z - c.z)));
+        CroftonEstimate e =
+            EstimateArea(*tri[0], c, 1.001 * R, 0x5eed0450 + i);
+        ExpectAgreement(tri[0]->Area(), e, "triangle " + std::to_string(i));
+    }
+}
+
+// The same estimator must reject plausible wrong formulas.
+TEST(CauchyCrofton, RejectsWrongFormulas) {
+    Transform identity;
+    // A hemisphere of radius 2.5: the right area is 2 pi r^2.
+    const Float r = 2.5f;
+    Sphere hemi(&identity, &identity, false, r, 0, r, 360);
+    CroftonEstimate e = EstimateArea(hemi, {0, 0, 0}, r, 0x5eed0427);
+    EXPECT_LE(Deviation(2 * kPi * r * r, e), kStandardErrors);
+    for (double wrong : {2 * kPi * r, 4 * kPi * r * r, kPi * r * r,
+                         2 * kPi * kPi * r * r / 4 /* phi int f dz */})
+        EXPECT_GT(Deviation(wrong, e), kStandardErrors) << wrong;
+
+    // A band z in [-0.5, 1] of a sphere of radius 1.25, phiMax 300 degrees.
+    const double rb = 1.25, z0 = -0.5, z1 = 1, phi = 300 * kPi / 180;
+    Sphere band(&identity, &identity, false, Float(rb), Float(z0), Float(z1),
+                300);
+    CroftonEstimate eb = EstimateArea(band, {0, 0, 0}, rb, 0x5eed0428);
+    EXPECT_LE(Deviation(band.Area(), eb), kStandardErrors);
+    double thetaWrong = phi * rb * rb * (std::acos(z0 / rb) - std::acos(z1 / rb));
+    EXPECT_GT(Deviation(thetaWrong, eb), kStandardErrors);
+
+    // A ring of radii 2 and 1.2.
+    Disk ring(&identity, &identity, false, 0, 2, 1.2f, 360);
+    CroftonEstimate er = EstimateArea(ring, {0, 0, 0}, 2, 0x5eed0429);
+    EXPECT_LE(Deviation(ring.Area(), er), kStandardErrors);
+    for (double wrong : {kPi * 2.0, kPi * (2 - 1.2) * (2 - 1.2),
+                         2 * kPi * (4 - 1.44), kPi * 4})
+        EXPECT_GT(Deviation(wrong, er), kStandardErrors) << wrong;
+
+    // A triangle: half the cross product's length, not the whole.
+    Point3f P[3] = {Point3f(0, 0, 0), Point3f(1.5f, 0.2f, 0),
+                    Point3f(0.3f, 1.1f, 0.4f)};
+    int indices[3] = {0, 1, 2};
+    std::vector<std::shared_ptr<Shape>> tri = CreateTriangleMesh(
+        &identity, &identity, false, 1, indices, 3, P, nullptr, nullptr,
+        nullptr);
+    CroftonEstimate et = EstimateArea(*tri[0], {0.6, 0.43, 0.13}, 1.1,
+                                      0x5eed042a);
+    double area = tri[0]->Area();
+    EXPECT_LE(Deviation(area, et), kStandardErrors);
+    EXPECT_GT(Deviation(2 * area, et), kStandardErrors);
+}

@@ -1,0 +1,322 @@
+// Chapter 4: the areas of partial spheres and rings against fine
+// tessellations. Triangles inscribed over a (u, v) grid have an area that
+// converges to the surface's area with order 2 in the grid spacing; the test
+// measures the order and extrapolates the limit (Richardson), in double
+// precision, without using the area formulas. The same tessellation, built
+// as a lrt triangle mesh under several transformations, tests
+// Triangle::Area() in world space.
+
+#include "lrt/lrt.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace lrt;
+
+namespace {
+
+// Random partial spheres (besides a hemisphere and a whole sphere) and
+// random rings.
+constexpr int kTessellatedSpheres = 20;
+constexpr int kTessellatedRings = 10;
+// Grid resolutions N (N x N cells, 2 N^2 triangles): 8, 16, ..., 512.
+constexpr int kCoarsestGrid = 8;
+constexpr int kLevels = 7;
+// The observed order of convergence at the finest levels must be within
+// this distance of 2.
+constexpr double kOrderTolerance = 0.1;
+// The error Area() - A_N must shrink per level by a factor within these
+// bounds, for the levels N = 8, ..., 128 (where it is far larger than the
+// rounding error of a Float Area()).
+constexpr double kMinErrorRatio = 3.5, kMaxErrorRatio = 4.5;
+constexpr int kErrorRatioLevels = 5;
+// Relative tolerance between Area() and the extrapolated limit.
+constexpr double kLimitRelTol = 1e-6;
+// Grid resolution of the lrt triangle meshes, and the relative tolerance of
+// their summed Triangle::Area() against the double-precision area of the
+// same world-space vertices: the world-space vertices are rounded to Float,
+// which moves each one by a few units in the last place of its coordinates.
+constexpr int kMeshGrid = 48;
+constexpr double kMeshRelTol = 4096 * double(MachineEpsilon);
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Vec {
+    double x, y, z;
+};
+
+Vec operator-(const Vec &a, const Vec &b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+double TriangleAreaDouble(const Vec &p0, const Vec &p1, const Vec &p2) {
+    Vec a = p1 - p0, b = p2 - p0;
+    double cx = a.y * b.z - a.z * b.y, cy = a.z * b.x - a.x * b.z,
+           cz = a.x * b.y - a.y * b.x;
+    return 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
+}
+
+// Maps the unit square onto a surface.
+using Parametrization = std::function<Vec(double u, double v)>;
+
+// The partial sphere of chapter 3, mapped as in its (u, v) equations.
+Parametrization SphereMap(double r, double zMin, double zMax, double phiMax) {
+    double thetaZMin = std::acos(zMin / r), thetaZMax = std::acos(zMax / r);
+    return [=](double u, double v) {
+        double phi = u * phiMax;
+        double theta = thetaZMin + v * (thetaZMax - thetaZMin);
+        return Vec{r * std::sin(theta) * std::cos(phi),
+                   r * std::sin(theta) * std::sin(phi), r * std::cos(theta)};
+    };
+}
+
+// The ring of chapter 3: rho runs from the outer to the inner radius.
+Parametrization RingMap(double h, double r, double ri, double phiMax) {
+    return [=](double u, double v) {
+        double phi = u * phiMax, rho = r - v * (r - ri);
+        return Vec{rho * std::cos(phi), rho * std::sin(phi), h};
+    };
+}
+
+// The grid points of an n x n tessellation, row by row (v outer).
+std::vector<Vec> GridPoints(const Parametrization &map, int n) {
+    std::vector<Vec> p;
+    p.reserve(size_t(n + 1) * (n + 1));
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) p.push_back(map(double(i) / n,
+                                                     double(j) / n));
+    return p;
+}
+
+// The two triangles of each grid cell, as indices into GridPoints().
+std::vector<int> GridTriangles(int n) {
+    std::vector<int> idx;
+    idx.reserve(size_t(6) * n * n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            int v00 = j * (n + 1) + i, v10 = v00 + 1;
+            int v01 = v00 + (n + 1), v11 = v01 + 1;
+            idx.insert(idx.end(), {v00, v10, v11, v00, v11, v01});
+        }
+    return idx;
+}
+
+double TessellationArea(const Parametrization &map, int n) {
+    std::vector<Vec> p = GridPoints(map, n);
+    std::vector<int> idx = GridTriangles(n);
+    double sum = 0;
+    for (size_t k = 0; k < idx.size(); k += 3)
+        sum += TriangleAreaDouble(p[idx[k]], p[idx[k + 1]], p[idx[k + 2]]);
+    return sum;
+}
+
+// A_N for N = kCoarsestGrid * 2^level.
+std::vector<double> TessellationSequence(const Parametrization &map) {
+    std::vector<double> a;
+    for (int level = 0, n = kCoarsestGrid; level < kLevels; ++level, n *= 2)
+        a.push_back(TessellationArea(map, n));
+    return a;
+}
+
+// The observed order from three consecutive levels, and the limit
+// extrapolated from the last two assuming order 2.
+double ObservedOrder(const std::vector<double> &a, size_t i) {
+    return std::log2((a[i] - a[i - 1]) / (a[i + 1] - a[i]));
+}
+
+double Extrapolated(const std::vector<double> &a) {
+    size_t k = a.size() - 1;
+    return a[k] + (a[k] - a[k - 1]) / 3;
+}
+
+double RelativeDifference(double a, double b) {
+    return std::abs(a - b) / std::abs(b);
+}
+
+// The checks common to spheres and rings.
+void CheckConvergence(const Parametrization &map, double area,
+                      const std::string &what) {
+    std::vector<double> a = TessellationSequence(map);
+    // The errors are positive (inscribed triangles fall short of a convex
+    // surface; for the flat ring the chords cut off the rim) and shrink by
+    // a factor of about 4 per level.
+    for (int i = 0; i + 1 < kErrorRatioLevels; ++i) {
+        double e0 = area - a[i], e1 = area - a[i + 1];
+        EXPECT_GT(e1, 0) << what << " level " << i + 1;
+        EXPECT_GE(e0 / e1, kMinErrorRatio) << what << " level " << i;
+        EXPECT_LE(e0 / e1, kMaxErrorRatio) << what << " level " << i;
+    }
+    // Observed order at the two finest triples of levels.
+    for (size_t i = a.size() - 3; i + 1 < a.size(); ++i)
+        EXPECT_NEAR(ObservedOrder(a, i), 2.0, kOrderTolerance)
+            << what << " levels " << i - 1 << ".." << i + 1;
+    EXPECT_LE(RelativeDifference(area, Extrapolated(a)), kLimitRelTol)
+        << what << ": Area() " << area << ", extrapolated "
+        << Extrapolated(a);
+}
+
+struct SphereCase {
+    Float radius, zMin, zMax, phiMaxDegrees;
+};
+
+std::vector<SphereCase> SphereCases() {
+    std::vector<SphereCase> cases = {{1.5f, 0, 1.5f, 360},
+                                     {0.75f, -0.75f, 0.75f, 360}};
+    std::mt19937_64 rng(0x5eed0411);
+    std::uniform_real_distribution<double> U(0, 1);
+    while (int(cases.size()) < kTessellatedSpheres + 2) {
+        Float r = Float(std::exp(std::log(0.1) + U(rng) * std::log(100.0)));
+        Float z0 = Float((2 * U(rng) - 1) * r), z1 = Float((2 * U(rng) - 1) * r);
+        if (std::abs(z1 - z0) < 0.05f * r) continue;
+        Float phi = (U(rng) < 0.2) ? 360 : Float(10 + 350 * U(rng));
+        cases.push_back({r, std::min(z0, z1), std::max(z0, z1), phi});
+    }
+    return cases;
+}
+
+std::string Describe(const SphereCase &s) {
+    return "sphere r=" + std::to_string(s.radius) +
+           " zMin=" + std::to_string(s.zMin) +
+           " zMax=" + std::to_string(s.zMax) +
+           " phiMax=" + std::to_string(s.phiMaxDegrees);
+}
+
+double ToRadians(Float degrees) { return double(degrees) * kPi / 180; }
+
+}  // namespace
+
+TEST(AreaTessellation, PartialSphereConvergesAtSecondOrder) {
+    Transform identity;
+    for (const SphereCase &s : SphereCases()) {
+        Sphere sphere(&identity, &identity, false, s.radius, s.zMin, s.zMax,
+                      s.phiMaxDegrees);
+        CheckConvergence(SphereMap(s.radius, s.zMin, s.zMax,
+                                   ToRadians(s.phiMaxDegrees)),
+                         sphere.Area(), Describe(s));
+    }
+}
+
+TEST(AreaTessellation, RingConvergesAtSecondOrder) {
+    Transform identity;
+    std::mt19937_64 rng(0x5eed0412);
+    std::uniform_real_distribution<double> U(0, 1);
+    for (int i = 0; i < kTessellatedRings; ++i) {
+        Float r = Float(0.2 + 5 * U(rng));
+        Float ri = (i % 3 == 0) ? 0 : Float(0.9 * U(rng) * r);
+        Float h = Float(4 * U(rng) - 2);
+        Float phi = (i % 4 == 0) ? 360 : Float(10 + 350 * U(rng));
+        Disk disk(&identity, &identity, false, h, r, ri, phi);
+        CheckConvergence(RingMap(h, r, ri, ToRadians(phi)), disk.Area(),
+                         "ring r=" + std::to_string(r) +
+                             " ri=" + std::to_string(ri) +
+                             " phiMax=" + std::to_string(phi));
+    }
+}
+
+// The extrapolated limit must reject wrong formulas that are plausible for
+// the shapes at hand.
+TEST(AreaTessellation, RejectsWrongFormulas) {
+    // Hemisphere of radius 1.5.
+    double r = 1.5;
+    double hemi = Extrapolated(
+        TessellationSequence(SphereMap(r, 0, r, 2 * kPi)));
+    EXPECT_LE(RelativeDifference(2 * kPi * r * r, hemi), kLimitRelTol);
+    for (double wrong : {2 * kPi * r, kPi * r * r, 4 * kPi * r * r,
+                         2 * kPi * kPi * r * r / 4 /* phi int f dz */})
+        EXPECT_GT(RelativeDifference(wrong, hemi), kLimitRelTol) << wrong;
+
+    // A band z in [-0.4, 0.9] of a sphere of radius 1.2, phiMax 300 degrees.
+    double rb = 1.2, z0 = -0.4, z1 = 0.9, phi = ToRadians(300);
+    double band = Extrapolated(
+        TessellationSequence(SphereMap(rb, z0, z1, phi)));
+    double thetaWrong = phi * rb * rb * (std::acos(z0 / rb) -
+                                         std::acos(z1 / rb));
+    EXPECT_GT(RelativeDifference(thetaWrong, band), kLimitRelTol);
+    EXPECT_GT(RelativeDifference(phi * rb * rb, band), kLimitRelTol);
+
+    // A ring of radii 2.5 and 1.
+    double ring = Extrapolated(
+        TessellationSequence(RingMap(0, 2.5, 1, 2 * kPi)));
+    EXPECT_GT(RelativeDifference(kPi * (2.5 - 1), ring), kLimitRelTol);
+    EXPECT_GT(RelativeDifference(kPi * (2.5 - 1) * (2.5 - 1), ring),
+              kLimitRelTol);
+    EXPECT_GT(RelativeDifference(2 * kPi * (2.5 * 2.5 - 1), ring),
+              kLimitRelTol);
+}
+
+// Triangle::Area() is the world-space area whatever the mesh's
+// transformation: the sum over a tessellated partial sphere must match the
+// double-precision area of the world-space vertices, and for a rigid motion
+// (scaled uniformly by s) the object-space tessellation's area (times s^2).
+TEST(TriangleArea, TessellatedSphereUnderTransformations) {
+    const double r = 1.25, zMin = -0.5, zMax = 1.1, phi = ToRadians(290);
+    std::vector<Vec> pd = GridPoints(SphereMap(r, zMin, zMax, phi),
+                                     kMeshGrid);
+    std::vector<int> idx = GridTriangles(kMeshGrid);
+    std::vector<Point3f> P;
+    for (const Vec &v : pd) P.push_back(Point3f(Float(v.x), Float(v.y),
+                                                Float(v.z)));
+    // Object-space area of the Float vertices, in double.
+    double objectArea = 0;
+    for (size_t k = 0; k < idx.size(); k += 3) {
+        const Point3f &a = P[idx[k]], &b = P[idx[k + 1]], &c = P[idx[k + 2]];
+        objectArea += TriangleAreaDouble({a.x, a.y, a.z}, {b.x, b.y, b.z},
+                                         {c.x, c.y, c.z});
+    }
+
+    Transform rigid =
+        Translate(Vector3f(3, -2, 7)) * Rotate(37, Vector3f(1, 2, -0.5));
+    Matrix4x4 shear(1.5f, 0.4f, -0.3f, 1, 0.2f, 0.7f, 0.5f, -2, -0.6f, 0.1f,
+                    2.2f, 0.5f, 0, 0, 0, 1);
+    struct Case {
+        std::string name;
+        Transform t;
+        double areaScale;  // 0: compare with the transformed vertices only
+    };
+    std::vector<Case> cases = {
+        {"identity", Transform(), 1},
+        {"rigid", rigid, 1},
+        {"rigid, scaled by 3", rigid * Scale(3, 3, 3), 9},
+        {"mirror", Scale(-1, 1, 1), 1},
+        {"general affine", Transform(shear), 0},
+        {"non-uniform scale", rigid * Scale(0.5f, 2, 4), 0}};
+    for (const Case &c : cases) {
+        Transform inv = Inverse(c.t);
+        std::vector<std::shared_ptr<Shape>> tris = CreateTriangleMesh(
+            &c.t, &inv, false, int(idx.size() / 3), idx.data(),
+            int(P.size()), P.data(), nullptr, nullptr, nullptr);
+        double sum = 0, worldArea = 0;
+        const Matrix4x4 &m = c.t.GetMatrix();
+        auto toWorld = [&m](const Point3f &p) {
+            double q[3];
+            for (int i = 0; i < 3; ++i)
+                q[i] = double(m.m[i][0]) * p.x + double(m.m[i][1]) * p.y +
+                       double(m.m[i][2]) * p.z + double(m.m[i][3]);
+            return Vec{q[0], q[1], q[2]};
+        };
+        for (size_t k = 0; k < idx.size(); k += 3) {
+            sum += tris[k / 3]->Area();
+            worldArea += TriangleAreaDouble(toWorld(P[idx[k]]),
+                                            toWorld(P[idx[k + 1]]),
+                                            toWorld(P[idx[k + 2]]));
+        }
+        EXPECT_LE(RelativeDifference(sum, worldArea), kMeshRelTol) << c.name;
+        if (c.areaScale > 0) {
+            EXPECT_LE(RelativeDifference(sum, c.areaScale * objectArea),
+                      kMeshRelTol)
+                << c.name;
+        } else {
+            // A deforming transformation changes the area; an
+            // object-space answer would be wrong.
+            EXPECT_GT(RelativeDifference(objectArea, sum), 100 * kMeshRelTol)
+                << c.name;
+        }
+    }
+}

@@ -72,3 +72,4 @@ clean:
 	rm -rf $(BUILD) compile_commands.json
 
 include tools/exercises.mk
+include tools/grade.mk

@@ -1,0 +1,1042 @@
+#!/usr/bin/env python3
+"""Grade a student's submission with lrt's tests (DESIGN.md section 7).
+
+    tools/grade.py [options] SUBMISSION          grade one submission
+    tools/grade.py --batch DIR [--out DIR]       grade every submission in DIR
+
+A submission is a directory, a .tar.gz/.tgz or a .zip holding edited chapter
+files: chapters/NN-slug.md, or NN-slug.md anywhere in it. Anything else is
+ignored and reported. Archives are read member by member: no member is ever
+written outside the grader's own directory, links and special files are
+ignored, and sizes are limited.
+
+Each chapter with exercises that the submission holds is graded on its own:
+the student's chapter N is tangled with the reference text of every other
+chapter (chapters 1..N), compiled, and chapter N's public and hidden tests are
+built. A compile error scores that chapter 0 and shows the first errors, at the
+student's file and line. Every exercise test then runs in its own process
+(--gtest_filter=Suite.Name), in a fresh working directory, with a time and a
+memory limit. A test passes only if its own JSON report exists and says so;
+an exit before the report (exit(0)), a signal, a timeout or a memory blow-up
+fails that test alone, and text printed by the student's code counts for
+nothing. Statuses: PASS, FAIL, CRASH (with the signal), TIMEOUT, OOM,
+COMPILE-ERROR, NOT-RUN.
+
+Points: an exercise's points are split evenly over its tests, public and
+hidden (partial credit); tests that belong to no exercise are not run.
+
+Structure: exercise chunks renamed, deleted or duplicated, and code changed
+outside the solution regions are reported with the student's file:line. By
+default the reference's code outside the exercises is restored (the student's
+solution regions are spliced into the reference chapter; a region the student
+deleted gets the stub); --allow-changes-outside-exercises grades the student's
+chapter as written. Prose changes are always fine.
+
+Outputs, in --out (default build/grade/NAME), rewritten atomically after every
+test: results.json (Gradescope), junit.xml and results.txt (a plain table).
+Batch mode writes OUT/NAME/ for each student and OUT/grades.csv.
+
+The student's code runs with the grader's privileges: rlimits and a temporary
+working directory, no sandbox. Run it in a container (Gradescope's is one).
+"""
+import argparse
+import concurrent.futures
+import csv
+import difflib
+import fcntl
+import hashlib
+import json
+import os
+import re
+import resource
+import shutil
+import signal
+import subprocess
+import sys
+import tarfile
+import tempfile
+import time
+import xml.etree.ElementTree as ET
+import zipfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+import exercises  # noqa: E402
+
+CHAPTER_NAME = re.compile(r'^(\d\d)-[^/\\]*\.md$')
+MAX_FILES = 2000              # members looked at in a submission
+MAX_CHAPTER_BYTES = 4 << 20   # one chapter file
+MAX_TOTAL_BYTES = 64 << 20    # everything read from a submission
+DEFAULT_CXXFLAGS = '-std=c++17 -O0 -ffp-contract=off -Wall -Wextra'
+MAX_OUTPUT = 64 << 10         # bytes of a test's output kept
+FIRST_ERRORS = 10
+
+
+def log(message):
+    print(message, file=sys.stderr, flush=True)
+
+
+# ---------------------------------------------------------------------------
+# Submissions
+
+class Submission:
+    """The chapter files found in a submission, and what was ignored."""
+    def __init__(self):
+        self.chapters = {}    # basename -> (name inside the submission, bytes)
+        self.ignored = []     # (name, reason)
+        self.problems = []    # messages about the submission as a whole
+
+
+def safe_name(name):
+    """A member name as a relative path, or None if it escapes."""
+    name = name.replace('\\', '/')
+    if name.startswith('/') or re.match(r'^[A-Za-z]:', name):
+        return None
+    parts = [p for p in name.split('/') if p not in ('', '.')]
+    if not parts or '..' in parts:
+        return None
+    return '/'.join(parts)
+
+
+def read_submission(path, reference_names):
+    """Reads a submission without writing any of it to disk outside memory."""
+    sub = Submission()
+    entries = []   # (name, reader() -> bytes, size)  regular files only
+    total = 0
+
+    def consider(name, size, reader):
+        nonlocal total
+        clean = safe_name(name)
+        if clean is None:
+            sub.ignored.append((name, 'unsafe path (absolute or with ..): ignored'))
+            return
+        base = clean.rsplit('/', 1)[-1]
+        if not CHAPTER_NAME.match(base):
+            sub.ignored.append((clean, 'not a chapter file'))
+            return
+        if base not in reference_names:
+            sub.ignored.append((clean, 'no chapter of the book is named %s' % base))
+            return
+        if size > MAX_CHAPTER_BYTES:
+            sub.ignored.append((clean, 'too large (%d bytes)' % size))
+            return
+        if total + size > MAX_TOTAL_BYTES:
+            sub.ignored.append((clean, 'the submission is too large'))
+            return
+        try:
+            data = reader()
+        except (ValueError, OSError, EOFError, zipfile.BadZipFile, tarfile.TarError,
+                RuntimeError) as e:
+            sub.ignored.append((clean, 'cannot be read (%s)' % e))
+            return
+        total += len(data)
+        entries.append((clean, data))
+
+    def reader_of(read):
+        def get():
+            data = read()
+            if len(data) > MAX_CHAPTER_BYTES:
+                raise ValueError('too large')
+            return data
+        return get
+
+    if os.path.isdir(path):
+        count = 0
+        for top, dirs, files in os.walk(path, followlinks=False):
+            dirs.sort()
+            for d in list(dirs):
+                if os.path.islink(os.path.join(top, d)):
+                    sub.ignored.append((os.path.relpath(os.path.join(top, d), path),
+                                        'a symbolic link: ignored'))
+                    dirs.remove(d)
+            for f in sorted(files):
+                full = os.path.join(top, f)
+                rel = os.path.relpath(full, path)
+                count += 1
+                if count > MAX_FILES:
+                    sub.problems.append('more than %d files: the rest is ignored' % MAX_FILES)
+                    break
+                if os.path.islink(full) or not os.path.isfile(full):
+                    sub.ignored.append((rel, 'not a regular file (a link?): ignored'))
+                    continue
+
+                def read(full=full):
+                    with open(full, 'rb') as fh:
+                        return fh.read(MAX_CHAPTER_BYTES + 1)
+                consider(rel, os.path.getsize(full), reader_of(read))
+    elif zipfile.is_zipfile(path):
+        try:
+            with zipfile.ZipFile(path) as z:
+                for count, info in enumerate(z.infolist()):
+                    if count >= MAX_FILES:
+                        sub.problems.append('more than %d files: the rest is ignored'
+                                            % MAX_FILES)
+                        break
+                    if info.is_dir():
+                        continue
+                    mode = (info.external_attr >> 16) & 0o170000
+                    if mode and mode != 0o100000:
+                        sub.ignored.append((info.filename, 'not a regular file (a link?): '
+                                            'ignored'))
+                        continue
+                    consider(info.filename, info.file_size, reader_of(
+                        lambda info=info: z.open(info).read(MAX_CHAPTER_BYTES + 1)))
+        except (zipfile.BadZipFile, OSError, EOFError, RuntimeError) as e:
+            sub.problems.append('the archive is damaged: %s' % e)
+    elif tarfile.is_tarfile(path):
+        try:
+            with tarfile.open(path) as t:
+                for count, member in enumerate(t):
+                    if count >= MAX_FILES:
+                        sub.problems.append('more than %d files: the rest is ignored'
+                                            % MAX_FILES)
+                        break
+                    if member.isdir():
+                        continue
+                    if not member.isfile():
+                        sub.ignored.append((member.name, 'not a regular file (a link?): '
+                                            'ignored'))
+                        continue
+                    consider(member.name, member.size, reader_of(
+                        lambda m=member: t.extractfile(m).read(MAX_CHAPTER_BYTES + 1)))
+        except (tarfile.TarError, OSError, EOFError) as e:
+            sub.problems.append('the archive is damaged: %s' % e)
+    else:
+        sub.problems.append('%s is neither a directory nor a .tar.gz or .zip archive'
+                            % os.path.basename(path))
+    # One file per chapter: chapters/NN-slug.md first, then the shortest path.
+    by_base = {}
+    for name, data in entries:
+        by_base.setdefault(name.rsplit('/', 1)[-1], []).append((name, data))
+    for base, found in sorted(by_base.items()):
+        found.sort(key=lambda e: (not (e[0] == 'chapters/' + base or
+                                       e[0].endswith('/chapters/' + base)),
+                                  e[0].count('/'), e[0]))
+        name, data = found[0]
+        sub.chapters[base] = (name, data)
+        for other, _ in found[1:]:
+            sub.ignored.append((other, 'another copy of %s; graded %s' % (base, name)))
+    return sub
+
+
+# ---------------------------------------------------------------------------
+# Structure: the student's chunks against the reference's
+
+def parse_chapter(path):
+    book = exercises.Book([path], tests=False)
+    return book.chapters[0], book
+
+
+def skeleton(chunk, regions):
+    """A chunk's body with each solution region (and stub block) replaced by
+    one placeholder line; trailing blanks ignored."""
+    out, i, by_begin = [], 0, {r.begin: r for r in regions}
+    body = chunk.body
+    while i < len(body):
+        region = by_begin.get(i)
+        if region is not None:
+            out.append('\0REGION')
+            i = (region.stub_end if region.stub_end is not None else region.end) + 1
+            continue
+        out.append(body[i].rstrip())
+        i += 1
+    while out and not out[-1]:
+        out.pop()
+    return tuple(out)
+
+
+def chunk_regions(chunk):
+    regions, errors = exercises.find_regions(chunk.body)
+    for region in regions:
+        region.chunk = region.path = chunk
+    return regions, errors
+
+
+def check_structure(reference, student, student_name, allow=False):
+    """Compares two parsed chapters. Returns (problems, code_changed, plan):
+    problems are messages; plan maps each reference region to the student's
+    region lines ((line, text) list) or None (deleted: use the stub)."""
+    problems = []
+    not_done = '' if allow else ': graded as not done'
+    exercise_chunks = {f: e for e in reference.exercises for f in e.fragments}
+    ref_names = [c.name for c in reference.chunks]
+    stu_names = [c.name for c in student.chunks]
+    stu_regions = {}
+    for chunk in student.chunks:
+        regions, errors = chunk_regions(chunk)
+        for index, message in errors:
+            problems.append('%s:%d: in <<%s>>: %s' % (student_name, chunk.line + 1 + index,
+                                                       chunk.name, message))
+        stu_regions[id(chunk)] = regions
+    new_names = [n for n in dict.fromkeys(stu_names) if n not in ref_names]
+    for name, exercise in exercise_chunks.items():
+        want = ref_names.count(name)
+        have = [c for c in student.chunks if c.name == name]
+        if not have:
+            guess = [n for n in new_names]
+            first = [c for c in reference.chunks if c.name == name][0]
+            ref_skel = skeleton(first, [r for r in reference.regions if r.chunk is first])
+            renamed = [c for c in student.chunks if c.name in new_names and
+                       skeleton(c, stu_regions[id(c)]) == ref_skel]
+            if renamed:
+                problems.append('%s:%d: exercise chunk <<%s>> (%s) was renamed to <<%s>>%s'
+                                % (student_name, renamed[0].line, name, exercise.id,
+                                   renamed[0].name, not_done))
+            else:
+                problems.append('%s: exercise chunk <<%s>> (%s) was deleted%s%s'
+                                % (student_name, name, exercise.id,
+                                   ' or renamed (new chunks: %s)' % ', '.join(
+                                       '<<%s>>' % g for g in guess) if guess else '',
+                                   not_done))
+        elif len(have) > want:
+            problems.append('%s:%d: exercise chunk <<%s>> (%s) is defined %d times (lines '
+                            '%s); the book defines it %d time(s)%s'
+                            % (student_name, have[want].line, name, exercise.id, len(have),
+                               ', '.join(str(c.line) for c in have), want,
+                               '' if allow else ': only the first is graded'))
+    # The code outside the solution regions, chunk by chunk.
+    ref_seq = [(c.name, skeleton(c, [r for r in reference.regions if r.chunk is c]))
+               for c in reference.chunks]
+    stu_seq = [(c.name, skeleton(c, stu_regions[id(c)])) for c in student.chunks]
+    changes = []
+    matcher = difflib.SequenceMatcher(None, ref_seq, stu_seq, autojunk=False)
+    for tag, i1, i2, j1, j2 in matcher.get_opcodes():
+        if tag == 'equal':
+            continue
+        ref_part, stu_part = reference.chunks[i1:i2], student.chunks[j1:j2]
+        stu_by_name = {}
+        for c in stu_part:
+            stu_by_name.setdefault(c.name, []).append(c)
+        for c in ref_part:
+            same = stu_by_name.get(c.name)
+            if same:
+                s = same.pop(0)
+                changes.append('%s:%d: the code of <<%s>> differs from the book\'s '
+                               '(outside the solution regions)' % (student_name, s.line,
+                                                                   c.name))
+            else:
+                changes.append('%s: chunk <<%s>> (book line %d) is missing'
+                               % (student_name, c.name, c.line))
+        for name, rest in stu_by_name.items():
+            for s in rest:
+                changes.append('%s:%d: chunk <<%s>> is %s' % (
+                    student_name, s.line, name, 'an extra definition' if name in ref_names
+                    else 'not in the book'))
+    # Which student region fills which reference region: the k-th region of
+    # chunk name X in the student's text fills the k-th of the reference's.
+    plan = {}
+    for name in dict.fromkeys(ref_names):
+        ref_r = [r for r in reference.regions if r.chunk.name == name]
+        stu_r = [r for c in student.chunks if c.name == name for r in stu_regions[id(c)]]
+        for k, region in enumerate(ref_r):
+            if k < len(stu_r):
+                s = stu_r[k]
+                plan[id(region)] = [(s.line(i), s.chunk.body[i])
+                                    for i in range(s.begin + 1, s.end)]
+            else:
+                plan[id(region)] = None
+                if name not in exercise_chunks or [c for c in student.chunks
+                                                   if c.name == name]:
+                    problems.append('%s: the solution region %d of <<%s>> is missing '
+                                    '(BEGIN/END SOLUTION markers removed?): graded as '
+                                    'not done' % (student_name, k + 1, name))
+        if len(stu_r) > len(ref_r):
+            extra = stu_r[len(ref_r)]
+            problems.append('%s:%d: <<%s>> has %d solution regions; the book has %d: the '
+                            'extra ones are not graded' % (student_name,
+                                                           extra.line(extra.begin),
+                                                           name, len(stu_r), len(ref_r)))
+    return problems, changes, plan
+
+
+def splice(reference, plan, student_name, reference_name):
+    """The reference chapter with the student's solution regions (or stubs).
+    Returns (text, line map: output line -> (file, line))."""
+    starts = {r.line(r.begin): r for r in reference.regions}
+    lines, where = [], []
+    n = 1
+    ref_lines = reference.lines
+    while n <= len(ref_lines):
+        region = starts.get(n)
+        if region is None:
+            lines.append(ref_lines[n - 1])
+            where.append((reference_name, n))
+            n += 1
+            continue
+        lines.append(ref_lines[n - 1])        # // BEGIN SOLUTION
+        where.append((reference_name, n))
+        filled = plan.get(id(region))
+        if filled is None:
+            for text in exercises.stub_code(region):
+                lines.append(text)
+                where.append((reference_name + ' (stub)', n))
+        else:
+            for line, text in filled:
+                lines.append(text)
+                where.append((student_name, line))
+        end = region.line(region.end)
+        lines.append(ref_lines[end - 1])      # // END SOLUTION
+        where.append((reference_name, end))
+        n = (region.line(region.stub_end) if region.stub_end is not None else end) + 1
+    return '\n'.join(lines), where
+
+
+# ---------------------------------------------------------------------------
+# Building, with a cache shared by submissions whose code is the same
+
+def run(cmd, cwd, timeout, env=None):
+    try:
+        proc = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, errors='replace',
+                              timeout=timeout, env=env, start_new_session=True)
+        return proc.returncode, proc.stdout + proc.stderr
+    except subprocess.TimeoutExpired as e:
+        out = e.stdout or ''
+        if isinstance(out, bytes):
+            out = out.decode(errors='replace')
+        return 'timeout', out
+
+
+def tree_hash(directory, extra):
+    h = hashlib.sha256(extra.encode())
+    for top, dirs, files in os.walk(directory):
+        dirs.sort()
+        for name in sorted(files):
+            path = os.path.join(top, name)
+            h.update(os.path.relpath(path, directory).encode() + b'\0')
+            with open(path, 'rb') as f:
+                # #line directives name chapter lines: prose edits must not
+                # force a rebuild, so they are left out of the key.
+                for line in f:
+                    if not line.startswith(b'#line '):
+                        h.update(line)
+            h.update(b'\0')
+    return h.hexdigest()[:24]
+
+
+def test_sources_hash(root, number):
+    h = hashlib.sha256()
+    for d in ('tests/ch%s' % number, 'tests/hidden/ch%s' % number):
+        full = os.path.join(root, d)
+        if os.path.isdir(full):
+            for name in sorted(os.listdir(full)):
+                h.update(name.encode())
+                with open(os.path.join(full, name), 'rb') as f:
+                    h.update(f.read())
+    return h.hexdigest()
+
+
+def compiler_errors(output, rename):
+    """The first error lines of a build, with paths rewritten by rename;
+    each error once (a header's error repeats in every file that includes it)."""
+    found = []
+    lines = output.splitlines()
+    for i, line in enumerate(lines):
+        m = re.match(r'^(.*?):(\d+):(?:(\d+):)? (fatal error|error): (.*)$', line)
+        if m:
+            text = rename(m.group(1), int(m.group(2)), m.group(3)) + ': error: ' + m.group(5)
+        elif 'undefined reference to' in line:
+            text = 'link error: ' + line.split(': ', 1)[-1]
+        elif line.startswith('tangle: '):
+            # the tangle's own message, and notangle's lines after it
+            text = '\n'.join([line] + [x for x in lines[i + 1:i + 6]
+                                       if x.strip() and not x.startswith(('make', '\t'))])
+        else:
+            continue
+        if text not in found:
+            found.append(text)
+        if len(found) >= FIRST_ERRORS:
+            break
+    return found
+
+
+def build_chapter(args, workdir, chapter_files, number, rename):
+    """Builds chapter `number`'s test binaries. chapter_files are paths
+    relative to workdir. Returns (binaries dict or None, errors list)."""
+    root = args.root
+    for link in ('tools', 'tests'):
+        target = os.path.join(workdir, link)
+        if not os.path.exists(target):
+            os.symlink(os.path.join(root, link), target)
+    build = os.path.join(workdir, 'build')
+    common = ['make', '--no-print-directory', '-f', 'tools/asof.mk', '-f', 'tools/hidden.mk',
+              'CHAPTERS=' + ' '.join(chapter_files), 'BUILD=' + build, 'ASOF=' + number,
+              'ONLY=' + number, 'HIDDEN=tests/hidden', 'CXXFLAGS=' + args.cxxflags]
+    env = dict(os.environ)
+    for var in ('MAKEFLAGS', 'MAKELEVEL', 'MFLAGS', 'FLOAT', 'SANITIZE'):
+        env.pop(var, None)
+    code, out = run(common + ['tangle'], workdir, args.compile_time_limit, env)
+    if code != 0:
+        return None, compiler_errors(out, rename) or ['the tangle failed:'] + \
+            out.strip().splitlines()[-5:]
+    src = os.path.join(build, 'float', 'asof', number, 'src')
+    key = tree_hash(src, args.cxxflags + '\0' + test_sources_hash(root, number))
+    cache = os.path.join(args.cache, key)
+    os.makedirs(args.cache, exist_ok=True)
+    with open(cache + '.lock', 'w') as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if os.path.isfile(os.path.join(cache, 'ok')):
+            return {'public': os.path.join(cache, 'ch' + number),
+                    'hidden': os.path.join(cache, 'hidden-ch' + number)}, []
+        code, out = run(common + ['-j%d' % args.build_jobs, 'lib', 'tests', 'hidden-tests'],
+                        workdir, args.compile_time_limit, env)
+        if code == 'timeout':
+            return None, ['the build took longer than %d s' % args.compile_time_limit]
+        if code != 0:
+            return None, compiler_errors(out, rename) or out.strip().splitlines()[-10:]
+        d = os.path.join(build, 'float', 'asof', number)
+        tmp = cache + '.tmp'
+        shutil.rmtree(tmp, ignore_errors=True)
+        os.makedirs(tmp)
+        shutil.copy2(os.path.join(d, 'tests', 'ch' + number), os.path.join(tmp, 'ch' + number))
+        hidden = os.path.join(d, 'hidden', 'ch' + number)
+        if os.path.exists(hidden):
+            shutil.copy2(hidden, os.path.join(tmp, 'hidden-ch' + number))
+        open(os.path.join(tmp, 'ok'), 'w').close()
+        shutil.rmtree(cache, ignore_errors=True)
+        os.rename(tmp, cache)
+        return {'public': os.path.join(cache, 'ch' + number),
+                'hidden': os.path.join(cache, 'hidden-ch' + number)}, []
+
+
+# ---------------------------------------------------------------------------
+# Running one test
+
+def limits(memory_mb, time_limit):
+    def apply():
+        os.setsid()
+        if memory_mb:
+            resource.setrlimit(resource.RLIMIT_AS, (memory_mb << 20, memory_mb << 20))
+        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+        resource.setrlimit(resource.RLIMIT_FSIZE, (64 << 20, 64 << 20))
+        cpu = int(time_limit) + 2
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
+    return apply
+
+
+def signal_name(number):
+    try:
+        return signal.Signals(number).name
+    except ValueError:
+        return 'signal %d' % number
+
+
+def run_test(binary, suite, name, args):
+    """Returns (status, message, output)."""
+    if not binary or not os.path.exists(binary):
+        return 'NOT-RUN', 'the test binary was not built', ''
+    full = '%s.%s' % (suite, name)
+    with tempfile.TemporaryDirectory(prefix='lrt-test-') as tmp:
+        report = os.path.join(tmp, 'report-%s.json' % os.urandom(8).hex())
+        out_path = os.path.join(tmp, 'output.txt')
+        work = os.path.join(tmp, 'cwd')
+        os.mkdir(work)
+        env = {'PATH': '/usr/bin:/bin', 'HOME': work, 'TMPDIR': work, 'LANG': 'C.UTF-8'}
+        start = time.time()
+        with open(out_path, 'wb') as out:
+            proc = subprocess.Popen([binary, '--gtest_filter=' + full,
+                                     '--gtest_output=json:' + report], cwd=work, env=env,
+                                    stdin=subprocess.DEVNULL, stdout=out, stderr=out,
+                                    preexec_fn=limits(args.memory_limit, args.time_limit))
+            try:
+                code = proc.wait(timeout=args.time_limit)
+            except subprocess.TimeoutExpired:
+                code = 'timeout'
+            try:
+                os.killpg(proc.pid, signal.SIGKILL)   # the test and anything it started
+            except OSError:
+                pass
+            if code == 'timeout':
+                proc.wait()
+        with open(out_path, 'rb') as f:
+            output = f.read(MAX_OUTPUT).decode(errors='replace')
+        elapsed = time.time() - start
+        oom_text = 'std::bad_alloc' in output or 'bad_alloc' in output
+        if code == 'timeout':
+            return 'TIMEOUT', 'killed after the time limit of %g s' % args.time_limit, output
+        found = None
+        try:
+            with open(report, encoding='utf-8') as f:
+                data = json.load(f)
+            for s in data.get('testsuites', []):
+                for t in s.get('testsuite', []):
+                    if s.get('name') == suite and t.get('name') == name:
+                        found = t
+        except (OSError, ValueError, AttributeError):
+            data = None
+        if found is not None and found.get('result') == 'SKIPPED':
+            return 'FAIL', 'the test was skipped', output
+        if found is not None and found.get('status') == 'RUN' and \
+                found.get('result') == 'COMPLETED':
+            failures = found.get('failures') or []
+            if not failures:
+                return 'PASS', '', output
+            message = '\n'.join(f.get('failure', '') for f in failures)
+            if 'bad_alloc' in message:
+                return 'OOM', 'out of memory (std::bad_alloc; limit %d MB)' % \
+                    args.memory_limit, message
+            return 'FAIL', message, output
+        if data is not None and found is None:
+            return 'NOT-RUN', 'the test binary has no test %s' % full, output
+        if isinstance(code, int) and code < 0:
+            sig = -code
+            if oom_text:
+                return 'OOM', 'out of memory (std::bad_alloc; limit %d MB), then %s' % (
+                    args.memory_limit, signal_name(sig)), output
+            if sig == signal.SIGXCPU:
+                return 'TIMEOUT', 'CPU time limit exceeded (%.1f s)' % elapsed, output
+            if sig == signal.SIGKILL and args.memory_limit:
+                return 'CRASH', 'killed (SIGKILL; out of memory?)', output
+            return 'CRASH', 'crashed with %s' % signal_name(sig), output
+        if oom_text:
+            return 'OOM', 'out of memory (std::bad_alloc; limit %d MB)' % args.memory_limit, \
+                output
+        return 'FAIL', 'exited (status %s) before reporting a result: a call to exit()?' % \
+            code, output
+
+
+# ---------------------------------------------------------------------------
+# Results: results.json (Gradescope), junit.xml, results.txt
+
+class Result:
+    def __init__(self, exercise, chapter, suite, name, hidden, max_score, hint):
+        self.exercise, self.chapter = exercise, chapter
+        self.suite, self.name, self.hidden = suite, name, hidden
+        self.max_score, self.hint = max_score, hint
+        self.status, self.message, self.output = 'NOT-RUN', 'not run yet', ''
+
+    @property
+    def full(self):
+        return '%s.%s' % (self.suite, self.name)
+
+    @property
+    def score(self):
+        return self.max_score if self.status == 'PASS' else 0.0
+
+
+def first_line(text):
+    m = re.search(r'C\+\+ exception with description "(.*?)" thrown', text or '', re.S)
+    if m:
+        return ('threw: ' + ' '.join(m.group(1).split()))[:160]
+    lines = [line.strip() for line in (text or '').splitlines()
+             if line.strip() and line.strip() != 'unknown file']
+    if len(lines) > 1 and re.match(r'^\S+:\d+$', lines[0]):   # gtest's file:line
+        return ('%s: %s' % (lines[0], lines[1]))[:160]
+    return lines[0][:160] if lines else ''
+
+
+def fence_safe(text):
+    """Text that cannot close the Markdown code block it is shown in."""
+    return text.replace('`' * 3, '` ` `')
+
+
+def atomic_write(path, text):
+    tmp = path + '.tmp'
+    with open(tmp, 'w', encoding='utf-8') as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def shown_message(result):
+    """What a student may see: for hidden tests, never the test's code."""
+    if not result.hidden or result.status != 'FAIL':
+        return result.message
+    m = re.search(r'C\+\+ exception with description "(.*?)" thrown', result.message, re.S)
+    if m:
+        return 'threw: ' + m.group(1)
+    if result.message.startswith('exited'):
+        return result.message
+    return 'a hidden test failed (its checks are not shown)'
+
+
+class Report:
+    def __init__(self, out, sub_label):
+        self.out, self.label = out, sub_label
+        self.results = []
+        self.notes = []        # Markdown lines for the top-level output
+        self.exercises = []    # (chapter, exercise id, points)
+        self.failed = False    # the grader itself failed somewhere
+        os.makedirs(out, exist_ok=True)
+
+    def exercise_scores(self):
+        rows = []
+        for chapter, ident, points in self.exercises:
+            rs = [r for r in self.results if r.exercise == ident]
+            got = sum(r.score for r in rs)
+            statuses = sorted({r.status for r in rs})
+            rows.append((chapter, ident, round(got, 4), points, statuses))
+        return rows
+
+    def write(self):
+        total = sum(r.score for r in self.results)
+        maximum = sum(p for _, _, p in self.exercises)
+        tests = []
+        for number, r in enumerate(self.results, 1):
+            message = shown_message(r)
+            md = ['**%s**%s' % (r.status, ' (hidden test)' if r.hidden else '')]
+            if message:
+                md.append('```\n%s\n```' % fence_safe(message[:4000]))
+            if not r.hidden and r.status != 'PASS' and r.output and r.output != r.message:
+                shown = [line for line in r.output.splitlines()
+                         if not line.startswith(('Running main() from', 'Note: Google Test'))]
+                if any(line.strip() for line in shown):
+                    md.append('Output of the test (first lines):\n```\n%s\n```'
+                              % fence_safe('\n'.join(shown[:30])[:4000]))
+            if r.status != 'PASS' and r.hint:
+                md.append('Hint: ' + r.hint)
+            tests.append({'name': '%s %s' % (r.exercise, r.full),
+                          'number': '%s.%d' % (r.exercise[len('ex-'):], number),
+                          'score': round(r.score, 4), 'max_score': round(r.max_score, 4),
+                          'status': 'passed' if r.status == 'PASS' else 'failed',
+                          'output': '\n\n'.join(md), 'output_format': 'md',
+                          'visibility': 'after_published' if r.hidden else 'visible',
+                          'tags': [r.status]})
+        data = {'score': round(total, 4), 'max_score': maximum,
+                'output': '\n'.join(self.notes) or 'Graded.', 'output_format': 'md',
+                'stdout_visibility': 'hidden', 'visibility': 'visible', 'tests': tests,
+                'extra_data': {'submission': self.label, 'exercises': [
+                    {'chapter': c, 'exercise': i, 'points': g, 'max_points': p,
+                     'statuses': s} for c, i, g, p, s in self.exercise_scores()]}}
+        atomic_write(os.path.join(self.out, 'results.json'), json.dumps(data, indent=1))
+        atomic_write(os.path.join(self.out, 'junit.xml'), self.junit())
+        atomic_write(os.path.join(self.out, 'results.txt'), self.table(total, maximum))
+
+    def junit(self):
+        suites = ET.Element('testsuites', name='lrt grading: ' + self.label)
+        for chapter, ident, got, points, _ in self.exercise_scores():
+            rs = [r for r in self.results if r.exercise == ident]
+            suite = ET.SubElement(suites, 'testsuite', name=ident, tests=str(len(rs)),
+                                  failures=str(sum(r.status == 'FAIL' for r in rs)),
+                                  errors=str(sum(r.status not in ('PASS', 'FAIL', 'NOT-RUN')
+                                                 for r in rs)),
+                                  skipped=str(sum(r.status == 'NOT-RUN' for r in rs)))
+            for r in rs:
+                case = ET.SubElement(suite, 'testcase', classname='%s.%s' % (ident, r.suite),
+                                     name=r.name)
+                if r.status == 'FAIL':
+                    ET.SubElement(case, 'failure', message=first_line(shown_message(r)),
+                                  type='FAIL').text = shown_message(r)
+                elif r.status == 'NOT-RUN':
+                    ET.SubElement(case, 'skipped', message=first_line(r.message))
+                elif r.status != 'PASS':
+                    ET.SubElement(case, 'error', message=first_line(r.message),
+                                  type=r.status).text = shown_message(r)
+        return ET.tostring(suites, encoding='unicode') + '\n'
+
+    def table(self, total, maximum):
+        lines = ['Submission: %s' % self.label, '']
+        lines += [re.sub(r'[`*]', '', n) for n in self.notes]
+        if self.notes:
+            lines.append('')
+        for chapter, ident, got, points, statuses in self.exercise_scores():
+            lines.append('chapter %s  %-8s %6.2f / %d' % (chapter, ident, got, points))
+            for r in (r for r in self.results if r.exercise == ident):
+                lines.append('    %-13s %5.2f/%-5.2f %s%s  %s' % (
+                    r.status, r.score, r.max_score, r.full, ' (hidden)' if r.hidden else '',
+                    first_line(shown_message(r))))
+        lines += ['', 'total %.2f / %d' % (total, maximum)]
+        return '\n'.join(lines) + '\n'
+
+
+# ---------------------------------------------------------------------------
+# Grading one submission
+
+def hint_text(exercise, lines):
+    if exercise.hint is None:
+        return ''
+    kind, n = exercise.hint
+    if kind == 'attribute':
+        parsed = exercises.parse_attributes(
+            re.sub(r'^:+\s*\{|\}\s*$', '', lines[exercise.line - 1].strip()))
+        return (parsed[2].get('hint', '') if parsed else '').strip()
+    out = []
+    for text in lines[n:]:
+        if re.match(r'^:{3,}\s*$', text):
+            break
+        out.append(text.strip())
+    return ' '.join(t for t in out if t)
+
+
+def grade(args, path, out):
+    root = args.root
+    ref_paths = sorted(os.path.join('chapters', f) for f in os.listdir(
+        os.path.join(root, 'chapters')) if CHAPTER_NAME.match(f))
+    cwd = os.getcwd()
+    os.chdir(root)
+    try:
+        book = exercises.load(ref_paths, root=root)
+    finally:
+        os.chdir(cwd)
+    if book.errors:
+        raise SystemExit('grade: the reference book has exercise errors:\n' +
+                         '\n'.join(book.errors))
+    label = re.sub(r'\.(tar\.gz|tgz|zip)$', '', os.path.basename(os.path.normpath(path)))
+    report = Report(out, label)
+    names = {os.path.basename(p): p for p in ref_paths}
+    sub = read_submission(path, set(names))
+    chapters_with_exercises = [c for c in book.chapters if c.exercises]
+    # Every exercise's tests, NOT-RUN until graded.
+    for chapter in chapters_with_exercises:
+        for e in chapter.exercises:
+            report.exercises.append((chapter.number, e.id, e.points))
+            tests = [(s, n, False) for s, n, _, _ in sorted(set(e.public_tests))] + \
+                    [(s, n, True) for s, n, _, _ in sorted(set(e.hidden_tests))]
+            tests = list(dict.fromkeys(tests))
+            hint = hint_text(e, chapter.lines)
+            for s, n, hidden in tests:
+                r = Result(e.id, chapter.number, s, n, hidden, e.points / len(tests), hint)
+                r.message = 'chapter %s is not in the submission' % chapter.path
+                report.results.append(r)
+    for problem in sub.problems:
+        report.notes.append('- ' + problem)
+    for name, reason in sub.ignored:
+        report.notes.append('- ignored `%s`: %s' % (name, reason))
+    if not sub.chapters:
+        report.notes.insert(0, '**No chapter file found in the submission**: expected '
+                            'chapters/NN-slug.md files, for example %s.'
+                            % ', '.join(c.path for c in chapters_with_exercises))
+    else:
+        report.notes.insert(0, 'Chapters found: %s' % ', '.join(
+            '`%s`' % n for n, _ in sub.chapters.values()))
+        for base in sorted(sub.chapters):
+            if not [c for c in chapters_with_exercises if os.path.basename(c.path) == base]:
+                report.notes.append('- `%s` has no exercises: not graded'
+                                    % sub.chapters[base][0])
+    report.write()
+    for chapter in chapters_with_exercises:
+        base = os.path.basename(chapter.path)
+        if base in sub.chapters:
+            try:
+                grade_chapter(args, book, chapter, sub.chapters[base], ref_paths, report)
+            except Exception as e:   # a grader bug costs this chapter, not the others
+                report.failed = True
+                report.notes.append('**The grader failed on chapter %s** (%s: %s); its tests '
+                                    'are NOT-RUN: tell your instructor.'
+                                    % (chapter.number, type(e).__name__, e))
+                for r in report.results:
+                    if r.chapter == chapter.number and r.status == 'NOT-RUN':
+                        r.message = 'the grader failed'
+                report.write()
+    report.write()
+    return report
+
+
+def grade_chapter(args, book, chapter, submitted, ref_paths, report):
+    root = args.root
+    number = chapter.number
+    student_name, data = submitted
+    results = [r for r in report.results if r.chapter == number]
+    for r in results:
+        r.message = 'not run'
+    with tempfile.TemporaryDirectory(prefix='lrt-grade-') as work:
+        os.makedirs(os.path.join(work, 'chapters'))
+        os.makedirs(os.path.join(work, 'student', 'chapters'))
+        student_copy = os.path.join(work, 'student', 'chapters', os.path.basename(chapter.path))
+        with open(student_copy, 'wb') as f:
+            f.write(data)
+        try:
+            text = data.decode('utf-8')
+        except UnicodeDecodeError:
+            text = None
+        notes = []
+        if text is None:
+            notes.append('`%s` is not UTF-8 text' % student_name)
+            student = None
+        else:
+            student, _ = parse_chapter(student_copy)
+        reference = chapter
+        line_map = None
+        if student is None:
+            plan = {}
+            problems, changes = [], []
+        else:
+            problems, changes, plan = check_structure(reference, student, student_name,
+                                                      args.allow_changes_outside_exercises)
+        if changes and args.allow_changes_outside_exercises:
+            chapter_text = text
+            notes.append('Code outside the exercises was changed (allowed; graded with '
+                         'your code):')
+        elif student is not None and not changes and not problems:
+            chapter_text = text
+        else:
+            chapter_text, line_map = splice(reference, plan, student_name, chapter.path)
+            if changes:
+                notes.append('**Warning**: code outside the exercises was changed; the '
+                             'book\'s code is used there instead of yours:')
+        notes += ['- ' + p for p in problems] + ['- ' + c for c in changes]
+        report.notes += ['', '### Chapter %s (`%s`)' % (number, student_name)] + \
+            (notes or ['Structure: as in the book.'])
+        files = []
+        for p in ref_paths:
+            if exercises.chapter_number(p) > number:
+                continue
+            target = os.path.join(work, p)
+            if p == chapter.path:
+                with open(target, 'w', encoding='utf-8') as f:
+                    f.write(chapter_text)
+            else:
+                shutil.copy(os.path.join(root, p), target)
+            files.append(p)
+
+        def rename(path, line, col):
+            col = ':' + col if col else ''
+            if path.endswith(chapter.path):
+                if line_map is None:
+                    return '%s:%d%s' % (student_name, line, col)
+                if 1 <= line <= len(line_map):
+                    f, n = line_map[line - 1]
+                    return '%s:%d%s' % (f, n, col)
+            if 'tests/hidden/' in path:
+                return '(a hidden test)'
+            m = re.search(r'(tests/ch\d+/.*|chapters/.*)$', path)
+            if m and m.group(1).startswith('chapters/'):
+                return '%s:%d%s (the book\'s text)' % (m.group(1), line, col)
+            return '%s:%d%s' % (m.group(1) if m else os.path.basename(path), line, col)
+
+        report.write()
+        binaries, errors = build_chapter(args, work, files, number, rename)
+    if binaries is None:
+        message = 'chapter %s does not compile: %s' % (number, '\n'.join(errors))
+        report.notes += ['', '**Compile error in chapter %s** (all its exercises score 0):'
+                         % number, '```', fence_safe('\n'.join(errors)), '```']
+        for r in results:
+            r.status, r.message = 'COMPILE-ERROR', message
+        report.write()
+        return
+    for r in results:
+        status, message, output = run_test(binaries['hidden' if r.hidden else 'public'],
+                                           r.suite, r.name, args)
+        r.status, r.message, r.output = status, message, output
+        report.write()
+
+
+# ---------------------------------------------------------------------------
+# Batch mode
+
+def submissions_in(directory):
+    found = []
+    for name in sorted(os.listdir(directory)):
+        full = os.path.join(directory, name)
+        if os.path.isdir(full) and not os.path.islink(full):
+            found.append((name, full))
+        elif name.endswith(('.tar.gz', '.tgz', '.zip')) and os.path.isfile(full):
+            found.append((re.sub(r'\.(tar\.gz|tgz|zip)$', '', name), full))
+    return found
+
+
+def grade_batch(args):
+    out = os.path.abspath(args.out or os.path.join(args.root, 'build', 'grade', 'batch'))
+    os.makedirs(out, exist_ok=True)
+    subs = submissions_in(args.batch)
+    start = time.time()
+    rows, done, broken = [], [0], []
+    forwarded = ['--root', args.root, '--cache', args.cache, '--time-limit',
+                 str(args.time_limit), '--memory-limit', str(args.memory_limit),
+                 '--compile-time-limit', str(args.compile_time_limit),
+                 '--cxxflags', args.cxxflags, '--build-jobs', '1']
+    if args.allow_changes_outside_exercises:
+        forwarded.append('--allow-changes-outside-exercises')
+
+    targets, used = {}, set()
+    for student, path in subs:
+        name = re.sub(r'[^\w.-]', '_', student)
+        while name in used or name in ('grades.csv', 'cache'):
+            name += '_'
+        used.add(name)
+        targets[path] = os.path.join(out, name)
+
+    def one(item):
+        student, path = item
+        target = targets[path]
+        shutil.rmtree(target, ignore_errors=True)   # never read an old result
+        t0 = time.time()
+        code, output = run([sys.executable, os.path.abspath(__file__), path, '--out', target,
+                            '--quiet'] + forwarded, None, args.submission_time_limit)
+        return os.path.basename(target), target, code, output, time.time() - t0
+
+    workers = max(1, min(2, args.workers))
+    with concurrent.futures.ThreadPoolExecutor(workers) as pool:
+        futures = [pool.submit(one, item) for item in subs]
+        for future in concurrent.futures.as_completed(futures):
+            student, target, code, output, elapsed = future.result()
+            done[0] += 1
+            try:
+                with open(os.path.join(target, 'results.json'), encoding='utf-8') as f:
+                    data = json.load(f)
+                for e in data['extra_data']['exercises']:
+                    rows.append((student, e['chapter'], e['exercise'], e['points'],
+                                 e['max_points']))
+                score = '%g/%g' % (data['score'], data['max_score'])
+            except (OSError, ValueError, KeyError) as e:
+                broken.append(student)
+                rows.append((student, '', '', 0, ''))
+                score = 'GRADER ERROR (%s): %s' % (code, first_line(output[-2000:]) or e)
+            if code != 0 and student not in broken:
+                broken.append(student)
+                score += ' (grader exit status %s)' % code
+            bar = '#' * int(30 * done[0] / max(1, len(subs)))
+            print('[%-30s] %d/%d %s: %s (%.1f s)' % (bar, done[0], len(subs), student, score,
+                                                     elapsed), flush=True)
+    csv_path = os.path.join(out, 'grades.csv')
+    with open(csv_path + '.tmp', 'w', newline='') as f:
+        w = csv.writer(f)
+        w.writerow(['student', 'chapter', 'exercise', 'points', 'max_points'])
+        w.writerows(sorted(rows, key=lambda r: (r[0], str(r[1]), str(r[2]))))
+    os.replace(csv_path + '.tmp', csv_path)
+    totals = {}
+    for student, _, _, points, _ in rows:
+        totals[student] = totals.get(student, 0) + float(points or 0)
+    values = sorted(totals.values())
+    print('graded %d submissions in %.1f s (%d with grader errors%s); scores: min %g, '
+          'median %g, max %g; %s' % (len(subs), time.time() - start, len(broken),
+                                    ': ' + ', '.join(broken) if broken else '',
+                                    values[0] if values else 0,
+                                    values[len(values) // 2] if values else 0,
+                                    values[-1] if values else 0, csv_path))
+    return 0
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split('\n')[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('submission', nargs='?')
+    parser.add_argument('--batch', metavar='DIR', help='grade every subdirectory or archive')
+    parser.add_argument('--out', help='output directory (default build/grade/NAME)')
+    parser.add_argument('--root', default=ROOT, help='the book (default: this repository)')
+    parser.add_argument('--cache', help='build cache (default ROOT/build/grade/cache)')
+    parser.add_argument('--time-limit', type=float, default=10, help='seconds per test')
+    parser.add_argument('--memory-limit', type=int, default=1024,
+                        help='MB of address space per test (0: none)')
+    parser.add_argument('--compile-time-limit', type=int, default=900)
+    parser.add_argument('--submission-time-limit', type=int, default=3600,
+                        help='batch: seconds for one submission')
+    parser.add_argument('--cxxflags', default=DEFAULT_CXXFLAGS)
+    parser.add_argument('--build-jobs', type=int, default=2)
+    parser.add_argument('--workers', type=int, default=2, help='batch: parallel (at most 2)')
+    parser.add_argument('--allow-changes-outside-exercises', action='store_true')
+    parser.add_argument('--quiet', action='store_true')
+    args = parser.parse_args(argv)
+    args.root = os.path.abspath(args.root)
+    args.cache = os.path.abspath(args.cache or os.path.join(args.root, 'build', 'grade',
+                                                            'cache'))
+    if args.batch:
+        if not os.path.isdir(args.batch):
+            parser.error('--batch %s is not a directory' % args.batch)
+        return grade_batch(args)
+    if not args.submission:
+        parser.error('give a SUBMISSION (a directory, .tar.gz or .zip) or --batch DIR')
+    if not os.path.exists(args.submission):
+        parser.error('%s does not exist' % args.submission)
+    label = re.sub(r'\.(tar\.gz|tgz|zip)$', '', os.path.basename(
+        os.path.normpath(args.submission)))
+    out = os.path.abspath(args.out or os.path.join(args.root, 'build', 'grade', label))
+    report = grade(args, os.path.abspath(args.submission), out)
+    if not args.quiet:
+        with open(os.path.join(out, 'results.txt'), encoding='utf-8') as f:
+            sys.stdout.write(f.read())
+        print('results: %s' % os.path.join(out, 'results.json'))
+    return 1 if report.failed else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

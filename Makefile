@@ -1,6 +1,7 @@
 # lrt: one text that is both a book and a C++ library.
 #
-#   make            tangle, lint, compile the library, weave build/book.pdf
+#   make            tangle, lint, compile the library and the benchmark,
+#                   weave build/book.pdf
 #   make test       every chapter's tests against the code as of that chapter
 #   make test CH=02 chapter 2's tests against the code as of chapter 2
 #   make test UPTO=05  chapters 1..5's tests against the code as of chapter 5
@@ -31,7 +32,7 @@ export CHAPTERS BUILD FLOAT SANITIZE
 
 .PHONY: all deps lint tangle lib test book clean
 
-all: lint tangle lib compile_commands.json book
+all: lint tangle lib bench-build compile_commands.json book
 
 deps:
 	@tools/deps.sh
@@ -72,4 +73,5 @@ clean:
 	rm -rf $(BUILD) compile_commands.json
 
 include tools/exercises.mk
+include tools/bench.mk
 include tools/grade.mk

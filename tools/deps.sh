@@ -17,6 +17,7 @@ need python3       command -v python3
 need noweb         command -v notangle
 need pandoc        command -v pandoc
 need libgtest-dev  test -f /usr/include/gtest/gtest.h
+need libbenchmark-dev test -f /usr/include/benchmark/benchmark.h
 need poppler-utils command -v pdftotext
 need texlive-latex-recommended command -v pdflatex
 need texlive-latex-recommended have_sty fancyvrb.sty

@@ -16,3 +16,9 @@
 #include "lrt/shapes/triangle.h"
 // lrt.h includes
 #include "lrt/core/plyreader.h"
+// lrt.h includes
+#include "lrt/core/primitive.h"
+// lrt.h includes
+#include "lrt/accelerators/bvh.h"
+// lrt.h includes
+#include "lrt/accelerators/fastbvh.h"

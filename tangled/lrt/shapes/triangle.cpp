@@ -328,6 +328,96 @@ Float Triangle::Area() const {
            cz = ax * by - ay * bx;
     return Float(0.5 * std::sqrt(cx * cx + cy * cy + cz * cz));
 }
+// Triangle Method Definitions
+bool Triangle::CompleteIntersection(const Ray &ray, const Point3f &p0,
+                                    const Point3f &p1, const Point3f &p2,
+                                    Float e0, Float e1, Float e2,
+                                    Float invDet,
+                                    SurfaceInteraction *isect) const {
+    // Reject degenerate triangles
+    Vector3f dp02 = p0 - p2, dp12 = p1 - p2;
+    Vector3f ng = Cross(dp02, dp12);
+    if (ng.LengthSquared() == 0) return false;
+    // Compute barycentric coordinates of the triangle hit
+    Float b0 = e0 * invDet, b1 = e1 * invDet, b2 = e2 * invDet;
+    // Compute triangle partial derivatives
+    Point2f uv[3];
+    GetUVs(uv);
+    Vector2f duv02 = uv[0] - uv[2], duv12 = uv[1] - uv[2];
+    Float determinant = duv02[0] * duv12[1] - duv02[1] * duv12[0];
+    bool degenerateUV = std::abs(determinant) < 1e-8;
+    Vector3f dpdu, dpdv;
+    if (!degenerateUV) {
+        Float invdet = 1 / determinant;
+        dpdu = (duv12[1] * dp02 - duv02[1] * dp12) * invdet;
+        dpdv = (duv02[0] * dp12 - duv12[0] * dp02) * invdet;
+    }
+    // Handle degenerate uv parameterization or partial derivatives
+    if (degenerateUV || Cross(dpdu, dpdv).LengthSquared() == 0)
+        CoordinateSystem(Normalize(ng), &dpdu, &dpdv);
+    // Compute error bounds for triangle intersection
+    Float xAbsSum = std::abs(b0 * p0.x) + std::abs(b1 * p1.x) +
+                    std::abs(b2 * p2.x);
+    Float yAbsSum = std::abs(b0 * p0.y) + std::abs(b1 * p1.y) +
+                    std::abs(b2 * p2.y);
+    Float zAbsSum = std::abs(b0 * p0.z) + std::abs(b1 * p1.z) +
+                    std::abs(b2 * p2.z);
+    Vector3f pError = gamma(7) * Vector3f(xAbsSum, yAbsSum, zAbsSum);
+    // Interpolate (u,v) parametric coordinates and hit point
+    Point3f pHit = b0 * p0 + b1 * p1 + b2 * p2;
+    Point2f uvHit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
+    // Fill in SurfaceInteraction from triangle hit
+    bool flip = reverseOrientation ^ transformSwapsHandedness;
+    *isect = SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
+                                Normal3f(0, 0, 0), Normal3f(0, 0, 0), ray.time,
+                                flip, faceIndex);
+    isect->shape = this;
+    isect->n = isect->shading.n = Normal3f(Normalize(ng));
+    if (flip) isect->n = isect->shading.n = -isect->n;
+    if (!mesh->n.empty() || !mesh->s.empty()) {
+        // Initialize Triangle shading geometry
+        // Compute shading normal ns for triangle
+        Normal3f ns = isect->n;
+        if (!mesh->n.empty()) {
+            Normal3f nInterp =
+                b0 * mesh->n[v[0]] + b1 * mesh->n[v[1]] + b2 * mesh->n[v[2]];
+            if (nInterp.LengthSquared() > 0) ns = Normalize(nInterp);
+        }
+        // Compute shading tangent ss for triangle
+        Vector3f ss = Normalize(isect->dpdu);
+        if (!mesh->s.empty()) {
+            Vector3f sInterp =
+                b0 * mesh->s[v[0]] + b1 * mesh->s[v[1]] + b2 * mesh->s[v[2]];
+            if (sInterp.LengthSquared() > 0) ss = Normalize(sInterp);
+        }
+        // Compute shading bitangent ts for triangle and adjust ss
+        Vector3f ts = Cross(Vector3f(ns), ss);
+        if (ts.LengthSquared() > 0) {
+            ts = Normalize(ts);
+            ss = Cross(ts, Vector3f(ns));
+        } else
+            CoordinateSystem(Vector3f(ns), &ss, &ts);
+        if (flip) ts = -ts;
+        // Compute dndu and dndv for triangle shading geometry
+        Normal3f dndu(0, 0, 0), dndv(0, 0, 0);
+        if (!mesh->n.empty()) {
+            if (degenerateUV) {
+                duv02 = Vector2f(Dot(dp02, dpdu), Dot(dp02, dpdv));
+                duv12 = Vector2f(Dot(dp12, dpdu), Dot(dp12, dpdv));
+                determinant = duv02[0] * duv12[1] - duv02[1] * duv12[0];
+            }
+            if (determinant != 0) {
+                Normal3f dn02 = mesh->n[v[0]] - mesh->n[v[2]];
+                Normal3f dn12 = mesh->n[v[1]] - mesh->n[v[2]];
+                Float invdet = 1 / determinant;
+                dndu = (duv12[1] * dn02 - duv02[1] * dn12) * invdet;
+                dndv = (duv02[0] * dn12 - duv12[0] * dn02) * invdet;
+            }
+        }
+        isect->SetShadingGeometry(ss, ts, dndu, dndv, true);
+    }
+    return true;
+}
 
 // Triangle Function Definitions
 std::vector<std::shared_ptr<Shape>> CreateTriangleMesh(

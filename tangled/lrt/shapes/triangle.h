@@ -50,6 +50,20 @@ class Triangle : public Shape {
                     bool testAlphaTexture = true) const override;
     // Triangle Public Methods
     Float Area() const override;
+    // Triangle Public Methods
+    void GetVertices(Point3f *q0, Point3f *q1, Point3f *q2) const {
+        // Get triangle vertices in p0, p1, and p2
+        const Point3f &p0 = mesh->p[v[0]];
+        const Point3f &p1 = mesh->p[v[1]];
+        const Point3f &p2 = mesh->p[v[2]];
+        *q0 = p0;
+        *q1 = p1;
+        *q2 = p2;
+    }
+    bool CompleteIntersection(const Ray &ray, const Point3f &p0,
+                              const Point3f &p1, const Point3f &p2, Float e0,
+                              Float e1, Float e2, Float invDet,
+                              SurfaceInteraction *isect) const;
 
   private:
     // Triangle Private Methods

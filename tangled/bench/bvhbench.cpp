@@ -1,0 +1,593 @@
+// bench/bvhbench.cpp: tangled from chapters/06-bvh.md. Edit the chapter, not this file.
+#include "lrt/lrt.h"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+using namespace lrt;
+using SplitMethod = BVHAccel::SplitMethod;
+
+// BVH Benchmark Declarations
+struct BenchMesh {
+    std::string name;
+    Transform identity;
+    std::vector<std::shared_ptr<Primitive>> prims;
+};
+
+struct RaySet {
+    std::string name;
+    std::vector<float> data;  // ox oy oz dx dy dz for each ray
+    size_t Count() const { return data.size() / 6; }
+    Ray Get(size_t i) const {
+        const float *r = &data[6 * i];
+        return Ray(Point3f(r[0], r[1], r[2]), Vector3f(r[3], r[4], r[5]));
+    }
+};
+// BVH Benchmark Declarations
+struct BenchOptions {
+    std::string dataDir = "build/bench-data";
+    std::string baseMesh = "data/bunny.ply";
+    std::vector<std::string> meshFiles, rayFiles;
+    std::vector<SplitMethod> methods = {SplitMethod::SAH, SplitMethod::HLBVH,
+                                        SplitMethod::Middle,
+                                        SplitMethod::EqualCounts};
+    int passes = 5, buildRepetitions = 3;
+    int firstLeafSize = 4, finalLeafSize = 8;
+    std::string jsonFile = "build/bvhbench.json";
+};
+
+const char *versionNames[] = {"first", "adopted", "final"};
+// BVH Benchmark Data Generation
+void SubdivideMesh(PlyMesh *m) {
+    std::unordered_map<uint64_t, int> midpoints;
+    auto midpoint = [&](int a, int b) {
+        uint64_t key = (uint64_t(std::min(a, b)) << 32) |
+                       uint64_t(std::max(a, b));
+        auto it = midpoints.find(key);
+        if (it != midpoints.end()) return it->second;
+        const Point3f &p = m->p[a], &q = m->p[b];
+        m->p.push_back(Point3f(float(0.5 * (double(p.x) + double(q.x))),
+                               float(0.5 * (double(p.y) + double(q.y))),
+                               float(0.5 * (double(p.z) + double(q.z)))));
+        int index = int(m->p.size()) - 1;
+        midpoints[key] = index;
+        return index;
+    };
+    std::vector<int> out;
+    out.reserve(4 * m->vertexIndices.size());
+    for (size_t t = 0; t < m->vertexIndices.size(); t += 3) {
+        int a = m->vertexIndices[t], b = m->vertexIndices[t + 1],
+            c = m->vertexIndices[t + 2];
+        int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+        for (int v : {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca})
+            out.push_back(v);
+    }
+    m->vertexIndices.swap(out);
+}
+// BVH Benchmark Data Generation
+struct Vec3d {
+    double x, y, z;
+};
+
+Vec3d Normalized(const Vec3d &v) {
+    double l = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    return {v.x / l, v.y / l, v.z / l};
+}
+
+Vec3d CrossD(const Vec3d &a, const Vec3d &b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+            a.x * b.y - a.y * b.x};
+}
+
+void AppendRay(RaySet *rays, const Vec3d &o, const Vec3d &d) {
+    for (double v : {o.x, o.y, o.z, d.x, d.y, d.z})
+        rays->data.push_back(float(v));
+}
+// BVH Benchmark Data Generation
+RaySet MakeCameraRays(const double lo[3], const double hi[3], int res) {
+    Vec3d c = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]),
+               0.5 * (lo[2] + hi[2])};
+    double e[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+    double r = 0.5 * std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    Vec3d view = Normalized({0.35, 0.25, 1.0});
+    double dist = 3.0 * r;
+    Vec3d eye = {c.x + dist * view.x, c.y + dist * view.y,
+                 c.z + dist * view.z};
+    Vec3d fwd = {-view.x, -view.y, -view.z};
+    Vec3d right = Normalized(CrossD(fwd, {0.0, 1.0, 0.0}));
+    Vec3d up = CrossD(right, fwd);
+    double tanHalf = std::tan(std::asin(0.8 * r / dist));
+    RaySet rays;
+    rays.name = "rays_primary (generated)";
+    rays.data.reserve(6 * size_t(res) * res);
+    for (int y = 0; y < res; ++y) {
+        double sy = (1.0 - 2.0 * (y + 0.5) / res) * tanHalf;
+        for (int x = 0; x < res; ++x) {
+            double sx = (2.0 * (x + 0.5) / res - 1.0) * tanHalf;
+            Vec3d d = Normalized({fwd.x + sx * right.x + sy * up.x,
+                                  fwd.y + sx * right.y + sy * up.y,
+                                  fwd.z + sx * right.z + sy * up.z});
+            AppendRay(&rays, eye, d);
+        }
+    }
+    return rays;
+}
+// BVH Benchmark Data Generation
+class PythonRandom {
+  public:
+    explicit PythonRandom(uint32_t seed) { InitByArray(seed); }
+    double Random() {
+        uint32_t a = Next() >> 5, b = Next() >> 6;
+        return (a * 67108864.0 + b) * (1.0 / 9007199254740992.0);
+    }
+
+  private:
+    static constexpr int N = 624, M = 397;
+    // PythonRandom Private Methods
+    void InitGenrand(uint32_t s) {
+        mt[0] = s;
+        for (int i = 1; i < N; ++i)
+            mt[i] = 1812433253u * (mt[i - 1] ^ (mt[i - 1] >> 30)) + uint32_t(i);
+        index = N;
+    }
+
+    void InitByArray(uint32_t key) {
+        InitGenrand(19650218u);
+        int i = 1;
+        for (int k = N; k > 0; --k) {
+            mt[i] = (mt[i] ^ ((mt[i - 1] ^ (mt[i - 1] >> 30)) * 1664525u)) + key;
+            if (++i >= N) {
+                mt[0] = mt[N - 1];
+                i = 1;
+            }
+        }
+        for (int k = N - 1; k > 0; --k) {
+            mt[i] = (mt[i] ^ ((mt[i - 1] ^ (mt[i - 1] >> 30)) * 1566083941u)) -
+                    uint32_t(i);
+            if (++i >= N) {
+                mt[0] = mt[N - 1];
+                i = 1;
+            }
+        }
+        mt[0] = 0x80000000u;
+    }
+    // PythonRandom Private Methods
+    uint32_t Next() {
+        if (index >= N) {
+            for (int i = 0; i < N; ++i) {
+                uint32_t y =
+                    (mt[i] & 0x80000000u) | (mt[(i + 1) % N] & 0x7fffffffu);
+                mt[i] = mt[(i + M) % N] ^ (y >> 1) ^ ((y & 1) ? 0x9908b0dfu : 0u);
+            }
+            index = 0;
+        }
+        uint32_t y = mt[index++];
+        y ^= y >> 11;
+        y ^= (y << 7) & 0x9d2c5680u;
+        y ^= (y << 15) & 0xefc60000u;
+        y ^= y >> 18;
+        return y;
+    }
+    uint32_t mt[N];
+    int index = N;
+};
+// BVH Benchmark Data Generation
+RaySet MakeIncoherentRays(const double lo[3], const double hi[3],
+                          size_t count, uint32_t seed) {
+    PythonRandom rng(seed);
+    Vec3d c = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]),
+               0.5 * (lo[2] + hi[2])};
+    double e[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+    double R = 1.5 * 0.5 * std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    RaySet rays;
+    rays.name = "rays_incoherent (generated)";
+    rays.data.reserve(6 * count);
+    for (size_t i = 0; i < count; ++i) {
+        double z = 1.0 - 2.0 * rng.Random();
+        double phi = 2.0 * 3.141592653589793 * rng.Random();
+        double s = std::sqrt(std::max(0.0, 1.0 - z * z));
+        Vec3d o = {c.x + R * s * std::cos(phi), c.y + R * s * std::sin(phi),
+                   c.z + R * z};
+        double tx = lo[0] + e[0] * rng.Random();
+        double ty = lo[1] + e[1] * rng.Random();
+        double tz = lo[2] + e[2] * rng.Random();
+        AppendRay(&rays, o, Normalized({tx - o.x, ty - o.y, tz - o.z}));
+    }
+    return rays;
+}
+// BVH Benchmark Input Functions
+std::unique_ptr<BenchMesh> MakeBenchMesh(const std::string &name,
+                                         const PlyMesh &m) {
+    auto bm = std::make_unique<BenchMesh>();
+    bm->name = name;
+    auto shapes = CreateTriangleMesh(
+        &bm->identity, &bm->identity, false, m.nTriangles(),
+        m.vertexIndices.data(), m.nVertices(), m.p.data(), nullptr,
+        nullptr, nullptr);
+    bm->prims.reserve(shapes.size());
+    for (const auto &s : shapes)
+        bm->prims.push_back(std::make_shared<GeometricPrimitive>(s));
+    return bm;
+}
+// BVH Benchmark Input Functions
+RaySet ReadRays(const std::string &filename) {
+    std::ifstream in(filename, std::ios::binary | std::ios::ate);
+    if (!in) throw std::runtime_error(filename + ": cannot open");
+    std::streamsize bytes = in.tellg();
+    if (bytes <= 0 || bytes % (6 * sizeof(float)) != 0)
+        throw std::runtime_error(filename + ": not a whole number of rays");
+    RaySet rays;
+    rays.name = filename.substr(filename.find_last_of('/') + 1);
+    rays.data.resize(size_t(bytes) / sizeof(float));
+    in.seekg(0);
+    in.read(reinterpret_cast<char *>(rays.data.data()), bytes);
+    if (!in) throw std::runtime_error(filename + ": read error");
+    // Convert the rays from little-endian if this machine is not
+    const uint32_t one = 1;
+    if (*reinterpret_cast<const unsigned char *>(&one) != 1)
+        for (float &f : rays.data) {
+            unsigned char *b = reinterpret_cast<unsigned char *>(&f);
+            std::swap(b[0], b[3]);
+            std::swap(b[1], b[2]);
+        }
+    return rays;
+}
+// BVH Benchmark Measurement Functions
+struct TraceResult {
+    int64_t hits = 0;
+    double sumT = 0;
+};
+
+TraceResult TracePass(const Primitive &accel, const RaySet &rays) {
+    TraceResult r;
+    for (size_t i = 0; i < rays.Count(); ++i) {
+        Ray ray = rays.Get(i);
+        SurfaceInteraction isect;
+        if (accel.Intersect(ray, &isect)) {
+            ++r.hits;
+            r.sumT += ray.tMax;
+        }
+    }
+    return r;
+}
+// BVH Benchmark Measurement Functions
+template <typename Accel>
+using AccelSlot = std::shared_ptr<std::unique_ptr<Accel>>;
+
+template <typename Accel, typename Make>
+void RegisterBuild(const std::string &name, AccelSlot<Accel> slot,
+                   Make make, int repetitions) {
+    benchmark::RegisterBenchmark(
+        name.c_str(),
+        [slot, make](benchmark::State &state) {
+            slot->reset();
+            for (auto _ : state) *slot = make();
+            BVHStats s = (*slot)->Stats();
+            state.counters["nodes"] = double(s.TotalNodes());
+            state.counters["leaves"] = double(s.leafNodes);
+            state.counters["leaf_size"] = s.AverageLeafSize();
+            state.counters["sah_cost"] = s.sahCost;
+            state.counters["depth"] = s.maxDepth;
+        })
+        ->Iterations(1)
+        ->Repetitions(repetitions)
+        ->ReportAggregatesOnly(true)
+        ->Unit(benchmark::kMillisecond);
+}
+// BVH Benchmark Measurement Functions
+template <typename Accel>
+void RegisterTrace(const std::string &name, AccelSlot<Accel> slot,
+                   const RaySet &rays, int passes) {
+    benchmark::RegisterBenchmark(
+        name.c_str(),
+        [slot, &rays](benchmark::State &state) {
+            if (!*slot) {
+                state.SkipWithError("the accelerator was not built");
+                return;
+            }
+            TraceResult r;
+            for (auto _ : state) r = TracePass(**slot, rays);
+            state.counters["Mrays/s"] = benchmark::Counter(
+                double(rays.Count()) * 1e-6, benchmark::Counter::kIsRate);
+            state.counters["hits"] = double(r.hits);
+            state.counters["sum_t"] = r.sumT;
+        })
+        ->Iterations(1)
+        ->Repetitions(passes)
+        ->ReportAggregatesOnly(true)
+        ->Unit(benchmark::kMillisecond);
+}
+// BVH Benchmark Measurement Functions
+const char *MethodName(SplitMethod m) {
+    switch (m) {
+    case SplitMethod::SAH: return "SAH";
+    case SplitMethod::HLBVH: return "HLBVH";
+    case SplitMethod::Middle: return "Middle";
+    case SplitMethod::EqualCounts: return "EqualCounts";
+    }
+    return "unknown";
+}
+
+std::string BenchName(const BenchMesh &mesh, SplitMethod method,
+                      const std::string &version, const std::string &what) {
+    return mesh.name + "/" + MethodName(method) + "/" + version + "/" + what;
+}
+// BVH Benchmark Measurement Functions
+void RunGroup(const BenchMesh &mesh, SplitMethod method,
+              const std::vector<RaySet> &raySets, const BenchOptions &opt,
+              benchmark::BenchmarkReporter *reporter) {
+    auto first = std::make_shared<std::unique_ptr<BVHAccel>>();
+    auto adopted = std::make_shared<std::unique_ptr<FastBVHAccel>>();
+    auto final = std::make_shared<std::unique_ptr<FastBVHAccel>>();
+    RegisterBuild(BenchName(mesh, method, "first", "build"), first, [&] {
+        return std::make_unique<BVHAccel>(mesh.prims, opt.firstLeafSize,
+                                          method);
+    }, opt.buildRepetitions);
+    RegisterBuild(BenchName(mesh, method, "adopted", "build"), adopted, [=] {
+        return std::make_unique<FastBVHAccel>(**first);
+    }, opt.buildRepetitions);
+    int finalLeafSize = method == SplitMethod::SAH ? opt.finalLeafSize
+                                                   : opt.firstLeafSize;
+    RegisterBuild(BenchName(mesh, method, "final", "build"), final, [=, &mesh] {
+        return std::make_unique<FastBVHAccel>(mesh.prims, finalLeafSize,
+                                              method);
+    }, opt.buildRepetitions);
+    for (const RaySet &rays : raySets) {
+        RegisterTrace(BenchName(mesh, method, "first", rays.name), first,
+                      rays, opt.passes);
+        RegisterTrace(BenchName(mesh, method, "adopted", rays.name), adopted,
+                      rays, opt.passes);
+        RegisterTrace(BenchName(mesh, method, "final", rays.name), final,
+                      rays, opt.passes);
+    }
+    benchmark::RunSpecifiedBenchmarks(reporter);
+    benchmark::ClearRegisteredBenchmarks();
+}
+// BVH Benchmark Reporter
+struct Median {
+    double cpuMs = 0;
+    std::map<std::string, double> counters;
+};
+
+class BenchReporter : public benchmark::ConsoleReporter {
+  public:
+    bool ReportContext(const Context &context) override {
+        if (contextShown) return true;
+        contextShown = true;
+        return ConsoleReporter::ReportContext(context);
+    }
+    void ReportRuns(const std::vector<Run> &runs) override {
+        ConsoleReporter::ReportRuns(runs);
+        for (const Run &run : runs) {
+            bool median = run.run_type == Run::RT_Aggregate &&
+                          run.aggregate_name == "median";
+            bool single = run.run_type == Run::RT_Iteration &&
+                          run.repetitions <= 1;
+            if (!median && !single) continue;
+            Median &m = medians[run.run_name.function_name];
+            m.cpuMs = run.GetAdjustedCPUTime();
+            for (const auto &c : run.counters) m.counters[c.first] = c.second;
+        }
+    }
+    const Median *Find(const std::string &name) const {
+        auto it = medians.find(name);
+        return it == medians.end() ? nullptr : &it->second;
+    }
+
+  private:
+    bool contextShown = false;
+    std::map<std::string, Median> medians;
+};
+// BVH Benchmark Output Functions
+const char *ReferenceCheck(const std::string &mesh, const std::string &rays,
+                           double hits) {
+    if (mesh.compare(0, 7, "bunny_L") != 0 || mesh == "bunny_L0") return "";
+    if (rays.compare(0, 12, "rays_primary") == 0)
+        return hits == 398701 ? "ok" : "MISMATCH";
+    if (rays.compare(0, 15, "rays_incoherent") == 0)
+        return hits == 641888 || hits == 641889 ? "ok" : "MISMATCH";
+    return "";
+}
+// BVH Benchmark Output Functions
+void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
+                  const std::vector<RaySet> &raySets,
+                  const BenchOptions &opt, const BenchReporter &rep) {
+    for (const auto &mesh : meshes) {
+        std::printf("\n%s: %zu triangles; medians of %d builds and %d "
+                    "passes\n", mesh->name.c_str(), mesh->prims.size(),
+                    opt.buildRepetitions, opt.passes);
+        std::printf("%-12s %-8s %9s %9s %8s %5s %7s %5s\n", "method",
+                    "version", "build ms", "nodes", "leaves", "leaf",
+                    "SAH", "depth");
+        // Print the tree statistics of every method and version
+        for (SplitMethod m : opt.methods)
+            for (const char *v : versionNames) {
+                const Median *b = rep.Find(BenchName(*mesh, m, v, "build"));
+                if (!b) continue;
+                auto c = b->counters;
+                std::printf("%-12s %-8s %9.1f %9.0f %8.0f %5.2f %7.2f %5.0f\n",
+                            MethodName(m), v, b->cpuMs, c["nodes"], c["leaves"],
+                            c["leaf_size"], c["sah_cost"], c["depth"]);
+            }
+        for (const RaySet &rays : raySets) {
+            std::printf("%s (%zu rays)\n", rays.name.c_str(), rays.Count());
+            std::printf("%-12s %-8s %9s %9s %14s %6s\n", "method",
+                        "version", "Mrays/s", "hits", "sum of t", "check");
+            // Print the tracing results of every method and version
+            for (SplitMethod m : opt.methods)
+                for (const char *v : versionNames) {
+                    const Median *t = rep.Find(BenchName(*mesh, m, v, rays.name));
+                    if (!t) continue;
+                    auto c = t->counters;
+                    std::printf("%-12s %-8s %9.3f %9.0f %14.6e %6s\n", MethodName(m), v,
+                                c["Mrays/s"], c["hits"], c["sum_t"],
+                                ReferenceCheck(mesh->name, rays.name, c["hits"]));
+                }
+        }
+        // Print the ratios of the final version to the first
+        std::printf("final / first: throughput on each ray set; build time\n");
+        for (SplitMethod m : opt.methods) {
+            std::printf("%-12s", MethodName(m));
+            for (const RaySet &rays : raySets) {
+                const Median *f = rep.Find(BenchName(*mesh, m, "first", rays.name));
+                const Median *l = rep.Find(BenchName(*mesh, m, "final", rays.name));
+                if (f && l)
+                    std::printf(" %s %.2fx", rays.name.c_str(),
+                                l->counters.at("Mrays/s") / f->counters.at("Mrays/s"));
+            }
+            const Median *bf = rep.Find(BenchName(*mesh, m, "first", "build"));
+            const Median *bl = rep.Find(BenchName(*mesh, m, "final", "build"));
+            if (bf && bl) std::printf(" build %.2fx", bl->cpuMs / bf->cpuMs);
+            std::printf("\n");
+        }
+    }
+}
+// BVH Benchmark Output Functions
+void WriteJSON(const std::string &filename,
+               const std::vector<std::unique_ptr<BenchMesh>> &meshes,
+               const std::vector<RaySet> &raySets, const BenchOptions &opt,
+               const BenchReporter &rep) {
+    std::ostringstream js;
+    js << "{\n  \"float\": \"" << (sizeof(Float) == 4 ? "float" : "double")
+       << "\",\n  \"passes\": " << opt.passes
+       << ",\n  \"build_repetitions\": " << opt.buildRepetitions
+       << ",\n  \"results\": [";
+    const char *sep = "\n";
+    for (const auto &mesh : meshes)
+        for (SplitMethod m : opt.methods)
+            for (const char *v : versionNames) {
+                // Write the JSON record of one tree and its ray sets
+                const Median *b = rep.Find(BenchName(*mesh, m, v, "build"));
+                if (!b) continue;
+                js.precision(10);
+                js << sep << "    {\"mesh\": \"" << mesh->name << "\", \"triangles\": "
+                   << mesh->prims.size() << ", \"method\": \"" << MethodName(m)
+                   << "\", \"version\": \"" << v << "\", \"build_ms\": " << b->cpuMs;
+                for (const char *k : {"nodes", "leaves", "leaf_size", "sah_cost", "depth"})
+                    js << ", \"" << k << "\": " << b->counters.at(k);
+                js << ", \"rays\": {";
+                const char *raySep = "";
+                for (const RaySet &rays : raySets) {
+                    const Median *t = rep.Find(BenchName(*mesh, m, v, rays.name));
+                    if (!t) continue;
+                    js << raySep << "\"" << rays.name << "\": {\"mrays_per_s\": "
+                       << t->counters.at("Mrays/s") << ", \"hits\": "
+                       << t->counters.at("hits") << ", \"sum_t\": "
+                       << t->counters.at("sum_t") << "}";
+                    raySep = ", ";
+                }
+                js << "}}";
+                sep = ",\n";
+            }
+    js << "\n  ]\n}\n";
+    std::ofstream out(filename);
+    out << js.str();
+    if (!out) throw std::runtime_error(filename + ": cannot write");
+}
+// BVH Benchmark Main Function
+int main(int argc, char **argv) {
+    benchmark::Initialize(&argc, argv);
+    BenchOptions opt;
+    try {
+        // Parse the benchmark's own command-line options
+        for (int i = 1; i < argc; ++i) {
+            std::string arg = argv[i];
+            auto value = [&]() -> std::string {
+                if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
+                return argv[++i];
+            };
+            if (arg == "--data") opt.dataDir = value();
+            else if (arg == "--base") opt.baseMesh = value();
+            else if (arg == "--mesh") opt.meshFiles.push_back(value());
+            else if (arg == "--rays") opt.rayFiles.push_back(value());
+            else if (arg == "--passes") opt.passes = std::max(1, std::stoi(value()));
+            else if (arg == "--builds")
+                opt.buildRepetitions = std::max(1, std::stoi(value()));
+            else if (arg == "--json") opt.jsonFile = value();
+            else if (arg == "--methods") {
+                // Parse the list of split methods
+                std::istringstream list(value());
+                opt.methods.clear();
+                for (std::string name; std::getline(list, name, ',');) {
+                    if (name == "sah") opt.methods.push_back(SplitMethod::SAH);
+                    else if (name == "hlbvh") opt.methods.push_back(SplitMethod::HLBVH);
+                    else if (name == "middle") opt.methods.push_back(SplitMethod::Middle);
+                    else if (name == "equalcounts")
+                        opt.methods.push_back(SplitMethod::EqualCounts);
+                    else throw std::invalid_argument("unknown split method " + name);
+                }
+            } else
+                throw std::invalid_argument("unknown option " + arg +
+                                            "; see bench/bvhbench.cpp");
+        }
+        std::vector<std::unique_ptr<BenchMesh>> meshes;
+        std::vector<RaySet> raySets;
+        // Load or generate the benchmark data
+        auto exists = [](const std::string &f) { return bool(std::ifstream(f)); };
+        std::string dir = opt.dataDir + "/";
+        if (opt.meshFiles.empty() && opt.rayFiles.empty() &&
+            exists(dir + "bunny_L2.ply") && exists(dir + "bunny_L4.ply") &&
+            exists(dir + "rays_primary.bin") && exists(dir + "rays_incoherent.bin")) {
+            opt.meshFiles = {dir + "bunny_L2.ply", dir + "bunny_L4.ply"};
+            opt.rayFiles = {dir + "rays_primary.bin", dir + "rays_incoherent.bin"};
+        }
+        for (const std::string &f : opt.meshFiles) {
+            std::string name = f.substr(f.find_last_of('/') + 1);
+            name = name.substr(0, name.rfind(".ply"));
+            meshes.push_back(MakeBenchMesh(name, ReadPly(f)));
+        }
+        for (const std::string &f : opt.rayFiles) raySets.push_back(ReadRays(f));
+        if (meshes.empty() || raySets.empty()) {
+            // Generate the benchmark data from the base mesh
+            std::printf("generating the benchmark data from %s\n",
+                        opt.baseMesh.c_str());
+            PlyMesh m = ReadPly(opt.baseMesh);
+            double lo[3] = {Infinity, Infinity, Infinity};
+            double hi[3] = {-Infinity, -Infinity, -Infinity};
+            for (const Point3f &p : m.p)
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = std::min(lo[a], double(p[a]));
+                    hi[a] = std::max(hi[a], double(p[a]));
+                }
+            if (meshes.empty())
+                for (int level = 1; level <= 4; ++level) {
+                    SubdivideMesh(&m);
+                    if (level == 2 || level == 4)
+                        meshes.push_back(MakeBenchMesh(
+                            "bunny_L" + std::to_string(level), m));
+                }
+            if (raySets.empty()) {
+                raySets.push_back(MakeCameraRays(lo, hi, 1024));
+                raySets.push_back(MakeIncoherentRays(lo, hi, size_t(1) << 20, 20240601u));
+            }
+        }
+        BenchReporter reporter;
+        for (const auto &mesh : meshes)
+            for (SplitMethod m : opt.methods)
+                RunGroup(*mesh, m, raySets, opt, &reporter);
+        PrintSummary(meshes, raySets, opt, reporter);
+        if (!opt.jsonFile.empty()) {
+            WriteJSON(opt.jsonFile, meshes, raySets, opt, reporter);
+            std::printf("\nresults written to %s\n", opt.jsonFile.c_str());
+        }
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "bvhbench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,629 @@
+// lrt/accelerators/fastbvh.cpp: tangled from chapters/06-bvh.md. Edit the chapter, not this file.
+#include "lrt/accelerators/fastbvh.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <typeinfo>
+
+namespace lrt {
+
+// Triangle Utility Functions
+static inline Float MaxAbs(Float a, Float b, Float c) {
+    return std::max(std::abs(a), std::max(std::abs(b), std::abs(c)));
+}
+// Define the LRT_PREFETCH macro
+#if defined(__GNUC__) || defined(__clang__)
+#define LRT_PREFETCH(address) __builtin_prefetch(address)
+#else
+#define LRT_PREFETCH(address) ((void)(address))
+#endif
+// FastBVHAccel Local Declarations
+struct FastBVHBuildPrim {
+    Float lo[3], hi[3];
+    int index;
+    bool isTriangle;
+    uint8_t bin;
+    Float Centroid(int dim) const {
+        return lo[dim] * Float(0.5) + hi[dim] * Float(0.5);
+    }
+};
+// FastBVHAccel Local Declarations
+struct FastBox {
+    Float lo[3], hi[3];
+    static FastBox Empty() {
+        return {{Infinity, Infinity, Infinity},
+                {-Infinity, -Infinity, -Infinity}};
+    }
+    void Grow(const Float l[3], const Float h[3]) {
+        Float l0 = l[0], l1 = l[1], l2 = l[2], h0 = h[0], h1 = h[1], h2 = h[2];
+        Float a0 = lo[0], a1 = lo[1], a2 = lo[2];
+        Float b0 = hi[0], b1 = hi[1], b2 = hi[2];
+        lo[0] = l0 < a0 ? l0 : a0;
+        lo[1] = l1 < a1 ? l1 : a1;
+        lo[2] = l2 < a2 ? l2 : a2;
+        hi[0] = h0 > b0 ? h0 : b0;
+        hi[1] = h1 > b1 ? h1 : b1;
+        hi[2] = h2 > b2 ? h2 : b2;
+    }
+    void Grow(const FastBox &b) { Grow(b.lo, b.hi); }
+    Float HalfArea() const {
+        Float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+        if (!(dx >= 0 && dy >= 0 && dz >= 0)) return 0;
+        return dx * dy + dy * dz + dz * dx;
+    }
+    int MaximumExtent() const {
+        Float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+        return (dx > dy && dx > dz) ? 0 : (dy > dz ? 1 : 2);
+    }
+};
+// FastBVHAccel Local Declarations
+constexpr int fastBVHBins = 16;
+constexpr Float fastBVHTraversalCost = 1;
+constexpr Float fastBVHIntersectionCost = 1;
+
+struct FastBVHBin {
+    FastBox box;
+    int count;
+};
+// FastBVHAccel Local Declarations
+struct FastRay {
+    explicit FastRay(const Ray &ray) {
+        ox = ray.o.x;
+        oy = ray.o.y;
+        oz = ray.o.z;
+        ix = 1 / ray.d.x;
+        iy = 1 / ray.d.y;
+        iz = 1 / ray.d.z;
+        nx = ix < 0;
+        ny = iy < 0;
+        nz = iz < 0;
+        fx = 1 - nx;
+        fy = 1 - ny;
+        fz = 1 - nz;
+        o[0] = ox;
+        o[1] = oy;
+        o[2] = oz;
+        // Compute the ray's permutation and shear for triangle tests
+        kz = MaxDimension(Abs(ray.d));
+        kx = kz + 1;
+        if (kx == 3) kx = 0;
+        ky = kx + 1;
+        if (ky == 3) ky = 0;
+        Vector3f d = Permute(ray.d, kx, ky, kz);
+        Sx = -d.x / d.z;
+        Sy = -d.y / d.z;
+        Sz = 1 / d.z;
+    }
+    Float ox, oy, oz, ix, iy, iz;
+    int nx, ny, nz, fx, fy, fz;
+    Float o[3];
+    int kx, ky, kz;
+    Float Sx, Sy, Sz;
+};
+// FastBVHAccel Local Declarations
+struct FastTriangleHit {
+    Float t, e0, e1, e2, invDet;
+};
+// FastBVHAccel Utility Functions
+static void SetChildBox(FastBVHNode *node, int c, const Float lo[3],
+                        const Float hi[3]) {
+    for (int a = 0; a < 3; ++a) {
+        node->bounds[a][0][c] = lo[a];
+        node->bounds[a][1][c] = hi[a];
+    }
+}
+
+static void SetChildBox(FastBVHNode *node, int c, const Bounds3f &b) {
+    Float lo[3] = {b.pMin.x, b.pMin.y, b.pMin.z};
+    Float hi[3] = {b.pMax.x, b.pMax.y, b.pMax.z};
+    SetChildBox(node, c, lo, hi);
+}
+
+static Bounds3f GetChildBox(const FastBVHNode &node, int c) {
+    Bounds3f b;
+    b.pMin = Point3f(node.bounds[0][0][c], node.bounds[1][0][c],
+                     node.bounds[2][0][c]);
+    b.pMax = Point3f(node.bounds[0][1][c], node.bounds[1][1][c],
+                     node.bounds[2][1][c]);
+    return b;
+}
+// FastBVHAccel Utility Functions
+static const Triangle *GetTriangle(const Primitive *p) {
+    if (typeid(*p) != typeid(GeometricPrimitive)) return nullptr;
+    const Shape *s = static_cast<const GeometricPrimitive *>(p)->GetShape();
+    if (typeid(*s) != typeid(Triangle)) return nullptr;
+    return static_cast<const Triangle *>(s);
+}
+
+static void StoreTriangle(FastTriangle *ft, const Triangle *tri) {
+    Point3f q[3];
+    tri->GetVertices(&q[0], &q[1], &q[2]);
+    for (int j = 0; j < 3; ++j) {
+        ft->v[j][0] = q[j].x;
+        ft->v[j][1] = q[j].y;
+        ft->v[j][2] = q[j].z;
+    }
+}
+// FastBVHAccel Utility Functions
+static inline int BinIndex(Float c, Float cMin, Float scale, int nBins) {
+    Float f = (c - cMin) * scale;
+    if (!(f > 0)) return 0;
+    if (f >= nBins) return nBins - 1;
+    return int(f);
+}
+// FastBVHAccel Utility Functions
+static inline bool IntersectTriangle(const FastTriangle &tri,
+                                     const FastRay &fr, const Ray &ray,
+                                     FastTriangleHit *hit) {
+    // Translate and permute the vertices with the ray's axes
+    const int kx = fr.kx, ky = fr.ky, kz = fr.kz;
+    Point3f p0t(tri.v[0][kx] - fr.o[kx], tri.v[0][ky] - fr.o[ky],
+                tri.v[0][kz] - fr.o[kz]);
+    Point3f p1t(tri.v[1][kx] - fr.o[kx], tri.v[1][ky] - fr.o[ky],
+                tri.v[1][kz] - fr.o[kz]);
+    Point3f p2t(tri.v[2][kx] - fr.o[kx], tri.v[2][ky] - fr.o[ky],
+                tri.v[2][kz] - fr.o[kz]);
+    // Shear the vertices with the ray's coefficients
+    const Float Sx = fr.Sx, Sy = fr.Sy, Sz = fr.Sz;
+    Float x0 = p0t.x + Sx * p0t.z, y0 = p0t.y + Sy * p0t.z;
+    Float x1 = p1t.x + Sx * p1t.z, y1 = p1t.y + Sy * p1t.z;
+    Float x2 = p2t.x + Sx * p2t.z, y2 = p2t.y + Sy * p2t.z;
+    // Compute edge function coefficients e0, e1, and e2
+    Float e0 = x1 * y2 - y1 * x2;
+    Float e1 = x2 * y0 - y2 * x0;
+    Float e2 = x0 * y1 - y0 * x1;
+    // Fall back to double-precision test at triangle edges
+    if (sizeof(Float) == sizeof(float) && (e0 == 0 || e1 == 0 || e2 == 0)) {
+        e0 = Float(double(x1) * double(y2) - double(y1) * double(x2));
+        e1 = Float(double(x2) * double(y0) - double(y2) * double(x0));
+        e2 = Float(double(x0) * double(y1) - double(y0) * double(x1));
+    }
+    // Perform triangle edge and determinant tests
+    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0))
+        return false;
+    Float det = e0 + e1 + e2;
+    if (det == 0) return false;
+    // Compute scaled hit distance to triangle and test against ray t range
+    Float z0 = Sz * p0t.z, z1 = Sz * p1t.z, z2 = Sz * p2t.z;
+    Float tScaled = e0 * z0 + e1 * z1 + e2 * z2;
+    bool inRange = det > 0 ? (tScaled > 0 && tScaled <= ray.tMax * det)
+                           : (tScaled < 0 && tScaled >= ray.tMax * det);
+    if (!inRange) return false;
+    // Compute t for the triangle hit
+    Float invDet = 1 / det;
+    Float t = tScaled * invDet;
+    // Ensure that computed triangle t is conservatively greater than zero
+    // Compute delta_z term for triangle t error bounds
+    Float maxZs = MaxAbs(z0, z1, z2);
+    Float deltaZ = gamma(3) * maxZs;
+    // Compute delta_x and delta_y terms for triangle t error bounds
+    Float maxZt = MaxAbs(p0t.z, p1t.z, p2t.z);
+    Float deltaX = gamma(5) * (MaxAbs(p0t.x, p1t.x, p2t.x) + maxZt);
+    Float deltaY = gamma(5) * (MaxAbs(p0t.y, p1t.y, p2t.y) + maxZt);
+    // Compute delta_e term for triangle t error bounds
+    Float maxXs = MaxAbs(x0, x1, x2), maxYs = MaxAbs(y0, y1, y2);
+    Float deltaE =
+        2 * (gamma(2) * maxXs * maxYs + deltaY * maxXs + deltaX * maxYs);
+    // Compute delta_t term for triangle t error bounds and check t
+    Float maxE = MaxAbs(e0, e1, e2);
+    Float deltaT = 3 *
+                   (gamma(3) * maxE * maxZs + deltaE * maxZs + deltaZ * maxE) *
+                   std::abs(invDet);
+    if (!(t > deltaT)) return false;
+    Point3f p0(tri.v[0][0], tri.v[0][1], tri.v[0][2]);
+    Point3f p1(tri.v[1][0], tri.v[1][1], tri.v[1][2]);
+    Point3f p2(tri.v[2][0], tri.v[2][1], tri.v[2][2]);
+    // Reject degenerate triangles
+    Vector3f dp02 = p0 - p2, dp12 = p1 - p2;
+    Vector3f ng = Cross(dp02, dp12);
+    if (ng.LengthSquared() == 0) return false;
+    *hit = {t, e0, e1, e2, invDet};
+    return true;
+}
+// FastBVHAccel Traversal Function
+template <typename LeafVisitor>
+static void TraverseFastBVH(const std::vector<FastBVHNode> &nodes,
+                            const std::vector<FastTriangle> &triangles,
+                            FastBVHChild root, const FastBVHNode &rootNode,
+                            const Ray &ray, const FastRay &fr,
+                            LeafVisitor visitLeaf) {
+    const FastRay r = fr;
+    {
+        const FastBVHNode &node = rootNode;
+        // Intersect the ray with both child boxes of node
+        Float t[2];
+        bool hit[2];
+        {
+            const Float(*b)[2][2] = node.bounds;
+            Float t0[2], t1[2];
+            for (int c = 0; c < 2; ++c) {
+                Float tx0 = (b[0][r.nx][c] - r.ox) * r.ix;
+                Float tx1 = (b[0][r.fx][c] - r.ox) * r.ix;
+                Float ty0 = (b[1][r.ny][c] - r.oy) * r.iy;
+                Float ty1 = (b[1][r.fy][c] - r.oy) * r.iy;
+                Float tz0 = (b[2][r.nz][c] - r.oz) * r.iz;
+                Float tz1 = (b[2][r.fz][c] - r.oz) * r.iz;
+                t0[c] = std::max(std::max(std::max(Float(0), tx0), ty0), tz0);
+                t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1);
+            }
+            for (int c = 0; c < 2; ++c) {
+                t[c] = t0[c];
+                hit[c] = !(t0[c] > t1[c] * (1 + 2 * gamma(3)));
+            }
+        }
+        (void)t;
+        if (!hit[0]) return;
+    }
+    struct StackEntry {
+        FastBVHChild child;
+        Float tEntry;
+    };
+    StackEntry stack[maxBVHDepth];
+    int stackSize = 0;
+    FastBVHChild current = root;
+    while (true) {
+        if (!current.IsLeaf()) {
+            // Test both children's boxes and descend into the nearer one
+            const FastBVHNode &node = nodes[current.offset];
+            // Intersect the ray with both child boxes of node
+            Float t[2];
+            bool hit[2];
+            {
+                const Float(*b)[2][2] = node.bounds;
+                Float t0[2], t1[2];
+                for (int c = 0; c < 2; ++c) {
+                    Float tx0 = (b[0][r.nx][c] - r.ox) * r.ix;
+                    Float tx1 = (b[0][r.fx][c] - r.ox) * r.ix;
+                    Float ty0 = (b[1][r.ny][c] - r.oy) * r.iy;
+                    Float ty1 = (b[1][r.fy][c] - r.oy) * r.iy;
+                    Float tz0 = (b[2][r.nz][c] - r.oz) * r.iz;
+                    Float tz1 = (b[2][r.fz][c] - r.oz) * r.iz;
+                    t0[c] = std::max(std::max(std::max(Float(0), tx0), ty0), tz0);
+                    t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1);
+                }
+                for (int c = 0; c < 2; ++c) {
+                    t[c] = t0[c];
+                    hit[c] = !(t0[c] > t1[c] * (1 + 2 * gamma(3)));
+                }
+            }
+            bool hit0 = hit[0], hit1 = hit[1];
+            Float t0 = t[0], t1 = t[1];
+            if (hit0 && hit1) {
+                bool second = t1 < t0;
+                const FastBVHChild &other = node.child[!second];
+                stack[stackSize].child = other;
+                stack[stackSize].tEntry = std::max(t0, t1);
+                ++stackSize;
+                // Prefetch the data of the other child
+                const void *otherData = &nodes[other.offset];
+                if (other.IsLeaf()) otherData = &triangles[other.offset];
+                LRT_PREFETCH(otherData);
+                current = node.child[second];
+                continue;
+            }
+            if (hit0 || hit1) {
+                current = node.child[hit1];
+                continue;
+            }
+        } else if (visitLeaf(current))
+            return;
+        // Pop the next child that the ray may still reach, or return
+        do {
+            if (stackSize == 0) return;
+            --stackSize;
+        } while (stack[stackSize].tEntry > ray.tMax * (1 + 2 * gamma(3)));
+        current = stack[stackSize].child;
+    }
+}
+// FastBVHAccel Method Definitions
+FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
+                           int maxPrimsInNode, SplitMethod splitMethod)
+    : maxPrimsInNode(Clamp(maxPrimsInNode, 1, 255)) {
+    if (splitMethod != SplitMethod::SAH) {
+        BVHAccel bvh(std::move(p), this->maxPrimsInNode, splitMethod);
+        CopyTree(bvh);
+        return;
+    }
+    if (p.size() > size_t(std::numeric_limits<int>::max() / 2))
+        throw std::length_error("FastBVHAccel: too many primitives");
+    // Compute build records of the valid primitives
+    std::vector<FastBVHBuildPrim> prims;
+    prims.reserve(p.size());
+    std::vector<const Triangle *> inputTris(p.size(), nullptr);
+    std::vector<FastTriangle> inputTriangles(p.size());
+    FastBox box = FastBox::Empty();
+    for (size_t i = 0; i < p.size(); ++i) {
+        if (!p[i])
+            throw std::invalid_argument("FastBVHAccel: primitive " +
+                                        std::to_string(i) + " is null");
+        Bounds3f b = p[i]->WorldBound();
+        if (!IsFiniteBox(b)) continue;
+        FastBVHBuildPrim bp = {{b.pMin.x, b.pMin.y, b.pMin.z},
+                               {b.pMax.x, b.pMax.y, b.pMax.z}, int(i), false, 0};
+        inputTris[i] = GetTriangle(p[i].get());
+        bp.isTriangle = inputTris[i] != nullptr;
+        if (bp.isTriangle) StoreTriangle(&inputTriangles[i], inputTris[i]);
+        prims.push_back(bp);
+        box.Grow(bp.lo, bp.hi);
+    }
+    if (prims.empty()) return;
+    // Build the tree with the binned SAH
+    nodes.reserve(prims.size() / 2 + 1);
+    SetChildBox(&rootNode, 0, box.lo, box.hi);
+    SetChildBox(&rootNode, 1, FastBox::Empty().lo, FastBox::Empty().hi);
+    root = BuildSAH(prims, 0, int(prims.size()), box, 0);
+    nodes.shrink_to_fit();
+    // Store the primitives and their triangles in leaf order
+    primitives.resize(prims.size());
+    refs.resize(prims.size());
+    triangles.resize(prims.size());
+    for (size_t k = 0; k < prims.size(); ++k) {
+        int i = prims[k].index;
+        refs[k] = {p[i].get(), inputTris[i]};
+        triangles[k] = inputTriangles[i];
+        primitives[k] = std::move(p[i]);
+    }
+}
+// FastBVHAccel Method Definitions
+FastBVHChild FastBVHAccel::BuildSAH(std::vector<FastBVHBuildPrim> &prims,
+                                    int start, int end, const FastBox &box,
+                                    int depth) {
+    int n = end - start;
+    if (n == 1) return MakeLeaf(prims, start, end);
+    int dim = box.MaximumExtent();
+    int mid = -1;
+    FastBox childBox[2] = {FastBox::Empty(), FastBox::Empty()};
+    if (depth + CeilLog2(n) < maxBVHDepth) {
+        // Bin the build primitives by centroid
+        int nBins = std::min(n, fastBVHBins);
+        FastBVHBin bins[2][fastBVHBins];
+        for (int b = 0; b < nBins; ++b)
+            bins[0][b] = bins[1][b] = {FastBox::Empty(), 0};
+        Float bMin = box.lo[dim];
+        Float scale = nBins / (box.hi[dim] - bMin);
+        for (int i = start; i < end; ++i) {
+            FastBVHBuildPrim &bp = prims[i];
+            int b = BinIndex(bp.Centroid(dim), bMin, scale, nBins);
+            bp.bin = uint8_t(b);
+            FastBVHBin &bin = bins[i & 1][b];
+            bin.count++;
+            bin.box.Grow(bp.lo, bp.hi);
+        }
+        for (int b = 0; b < nBins; ++b) {
+            bins[0][b].count += bins[1][b].count;
+            bins[0][b].box.Grow(bins[1][b].box);
+        }
+        // Find the cheapest bin boundary, or return a leaf
+        Float rightArea[fastBVHBins];
+        int rightCount[fastBVHBins];
+        FastBox acc = FastBox::Empty();
+        int count = 0;
+        for (int b = nBins - 1; b > 0; --b) {
+            acc.Grow(bins[0][b].box);
+            count += bins[0][b].count;
+            rightArea[b] = acc.HalfArea();
+            rightCount[b] = count;
+        }
+        acc = FastBox::Empty();
+        count = 0;
+        Float bestCost = Infinity;
+        int bestSplit = -1;
+        for (int b = 0; b < nBins - 1; ++b) {
+            acc.Grow(bins[0][b].box);
+            count += bins[0][b].count;
+            if (count == 0 || rightCount[b + 1] == 0) continue;
+            Float cost = count * acc.HalfArea() + rightCount[b + 1] * rightArea[b + 1];
+            if (cost < bestCost) {
+                bestCost = cost;
+                bestSplit = b;
+            }
+        }
+        Float area = box.HalfArea();
+        Float leafCost = fastBVHIntersectionCost * n * area;
+        Float splitCost = fastBVHTraversalCost * area +
+                          fastBVHIntersectionCost * bestCost;
+        if (n <= maxPrimsInNode && !(splitCost < leafCost))
+            return MakeLeaf(prims, start, end);
+        // Partition the build primitives at the chosen bin boundary
+        if (bestSplit >= 0) {
+            auto midIter = std::partition(
+                prims.begin() + start, prims.begin() + end,
+                [=](const FastBVHBuildPrim &bp) { return bp.bin <= bestSplit; });
+            mid = int(midIter - prims.begin());
+            for (int b = 0; b < nBins; ++b)
+                childBox[b <= bestSplit ? 0 : 1].Grow(bins[0][b].box);
+        }
+    }
+    if (mid < 0) {
+        // Split the build primitives into two halves
+        mid = (start + end) / 2;
+        std::nth_element(prims.begin() + start, prims.begin() + mid,
+                         prims.begin() + end,
+                         [dim](const FastBVHBuildPrim &a, const FastBVHBuildPrim &b) {
+                             return a.Centroid(dim) < b.Centroid(dim);
+                         });
+        for (int i = start; i < end; ++i)
+            childBox[i < mid ? 0 : 1].Grow(prims[i].lo, prims[i].hi);
+    }
+    // Create an interior FastBVHNode and build its children
+    int nodeIndex = int(nodes.size());
+    nodes.emplace_back();
+    for (int c = 0; c < 2; ++c)
+        SetChildBox(&nodes[nodeIndex], c, childBox[c].lo, childBox[c].hi);
+    FastBVHChild c0 = BuildSAH(prims, start, mid, childBox[0], depth + 1);
+    FastBVHChild c1 = BuildSAH(prims, mid, end, childBox[1], depth + 1);
+    nodes[nodeIndex].child[0] = c0;
+    nodes[nodeIndex].child[1] = c1;
+    FastBVHChild interior = {uint32_t(nodeIndex), 0, 0};
+    return interior;
+}
+// FastBVHAccel Method Definitions
+FastBVHChild FastBVHAccel::MakeLeaf(std::vector<FastBVHBuildPrim> &prims,
+                                    int start, int end) const {
+    auto firstOther = std::partition(
+        prims.begin() + start, prims.begin() + end,
+        [](const FastBVHBuildPrim &bp) { return bp.isTriangle; });
+    int nTriangles = int(firstOther - (prims.begin() + start));
+    FastBVHChild leaf = {uint32_t(start), uint16_t(nTriangles),
+                         uint16_t(end - start - nTriangles)};
+    return leaf;
+}
+// FastBVHAccel Method Definitions
+FastBVHAccel::FastBVHAccel(const BVHAccel &bvh)
+    : maxPrimsInNode(bvh.MaxPrimsInNode()) {
+    CopyTree(bvh);
+}
+// FastBVHAccel Method Definitions
+void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
+    if (bvh.Nodes().empty()) return;
+    size_t n = bvh.Primitives().size();
+    primitives.reserve(n);
+    refs.reserve(n);
+    triangles.reserve(n);
+    nodes.reserve(bvh.Nodes().size() / 2);
+    SetChildBox(&rootNode, 0, bvh.Nodes()[0].bounds);
+    SetChildBox(&rootNode, 1, Bounds3f());
+    root = CopySubtree(bvh, 0);
+}
+// FastBVHAccel Method Definitions
+FastBVHChild FastBVHAccel::CopySubtree(const BVHAccel &bvh, int index) {
+    const LinearBVHNode &node = bvh.Nodes()[index];
+    if (node.nPrimitives > 0) {
+        // Append the primitives of a BVHAccel leaf, triangles first
+        FastBVHChild leaf = {uint32_t(primitives.size()), 0, 0};
+        for (int pass = 0; pass < 2; ++pass)
+            for (int i = 0; i < node.nPrimitives; ++i) {
+                const std::shared_ptr<Primitive> &prim =
+                    bvh.Primitives()[node.primitivesOffset + i];
+                const Triangle *tri = GetTriangle(prim.get());
+                if ((pass == 0) != (tri != nullptr)) continue;
+                primitives.push_back(prim);
+                refs.push_back({prim.get(), tri});
+                triangles.emplace_back();
+                if (tri) {
+                    StoreTriangle(&triangles.back(), tri);
+                    leaf.nTriangles++;
+                } else {
+                    leaf.nOthers++;
+                }
+            }
+        return leaf;
+    }
+    int nodeIndex = int(nodes.size());
+    nodes.emplace_back();
+    int children[2] = {index + 1, node.secondChildOffset};
+    for (int c = 0; c < 2; ++c)
+        SetChildBox(&nodes[nodeIndex], c, bvh.Nodes()[children[c]].bounds);
+    FastBVHChild c0 = CopySubtree(bvh, children[0]);
+    FastBVHChild c1 = CopySubtree(bvh, children[1]);
+    nodes[nodeIndex].child[0] = c0;
+    nodes[nodeIndex].child[1] = c1;
+    FastBVHChild interior = {uint32_t(nodeIndex), 0, 0};
+    return interior;
+}
+// FastBVHAccel Method Definitions
+bool FastBVHAccel::Intersect(const Ray &ray,
+                             SurfaceInteraction *isect) const {
+    if (refs.empty()) return false;
+    FastRay fr(ray);
+    int64_t hitTriangle = -1;
+    FastTriangleHit closest = {0, 0, 0, 0, 0};
+    bool hitOther = false;
+    TraverseFastBVH(nodes, triangles, root, rootNode, ray, fr,
+                    [&](const FastBVHChild &leaf) {
+        // Find the closest hit among a fast leaf's primitives
+        for (int i = 0; i < leaf.nTriangles; ++i) {
+            FastTriangleHit hit;
+            if (IntersectTriangle(triangles[leaf.offset + i], fr, ray, &hit)) {
+                ray.tMax = hit.t;
+                closest = hit;
+                hitTriangle = leaf.offset + i;
+                LRT_PREFETCH(&refs[hitTriangle]);
+            }
+        }
+        for (int i = 0; i < leaf.nOthers; ++i) {
+            size_t k = size_t(leaf.offset) + leaf.nTriangles + i;
+            if (refs[k].primitive->Intersect(ray, isect)) {
+                hitTriangle = -1;
+                hitOther = true;
+            }
+        }
+        return false;
+    });
+    if (hitTriangle >= 0) {
+        // Complete the interaction for the closest triangle hit
+        const FastTriangle &ft = triangles[hitTriangle];
+        Point3f p0(ft.v[0][0], ft.v[0][1], ft.v[0][2]);
+        Point3f p1(ft.v[1][0], ft.v[1][1], ft.v[1][2]);
+        Point3f p2(ft.v[2][0], ft.v[2][1], ft.v[2][2]);
+        const FastPrimitiveRef &ref = refs[hitTriangle];
+        if (!ref.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
+                                                closest.e1, closest.e2,
+                                                closest.invDet, isect))
+            throw std::logic_error("FastBVHAccel::Intersect: the fast triangle "
+                                   "test accepted a degenerate triangle");
+        isect->primitive = ref.primitive;
+    }
+    return hitOther || hitTriangle >= 0;
+}
+// FastBVHAccel Method Definitions
+bool FastBVHAccel::IntersectP(const Ray &ray) const {
+    if (refs.empty()) return false;
+    FastRay fr(ray);
+    bool hit = false;
+    TraverseFastBVH(nodes, triangles, root, rootNode, ray, fr,
+                    [&](const FastBVHChild &leaf) {
+        for (int i = 0; i < leaf.nTriangles; ++i) {
+            FastTriangleHit h;
+            if (IntersectTriangle(triangles[leaf.offset + i], fr, ray, &h))
+                return hit = true;
+        }
+        for (int i = 0; i < leaf.nOthers; ++i) {
+            size_t k = size_t(leaf.offset) + leaf.nTriangles + i;
+            if (refs[k].primitive->IntersectP(ray)) return hit = true;
+        }
+        return false;
+    });
+    return hit;
+}
+// FastBVHAccel Method Definitions
+Bounds3f FastBVHAccel::WorldBound() const {
+    if (refs.empty()) return Bounds3f();
+    return GetChildBox(rootNode, 0);
+}
+// FastBVHAccel Method Definitions
+BVHStats FastBVHAccel::Stats() const {
+    BVHStats s;
+    if (refs.empty()) return s;
+    double rootArea = BoxArea(GetChildBox(rootNode, 0));
+    struct Item {
+        FastBVHChild child;
+        double area;
+        int depth;
+    };
+    std::vector<Item> todo = {{root, rootArea, 0}};
+    while (!todo.empty()) {
+        Item item = todo.back();
+        todo.pop_back();
+        double p = HitProbability(item.area, rootArea);
+        s.maxDepth = std::max(s.maxDepth, item.depth);
+        if (item.child.IsLeaf()) {
+            int n = item.child.NPrimitives();
+            s.leafNodes++;
+            s.primitives += n;
+            s.maxLeafSize = std::max(s.maxLeafSize, n);
+            s.sahCost += p * n;
+        } else {
+            s.interiorNodes++;
+            s.sahCost += p;
+            const FastBVHNode &node = nodes[item.child.offset];
+            for (int c = 0; c < 2; ++c)
+                todo.push_back({node.child[c], BoxArea(GetChildBox(node, c)),
+                                item.depth + 1});
+        }
+    }
+    return s;
+}
+
+}  // namespace lrt

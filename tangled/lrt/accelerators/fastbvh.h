@@ -1,0 +1,81 @@
+// lrt/accelerators/fastbvh.h: tangled from chapters/06-bvh.md. Edit the chapter, not this file.
+#pragma once
+
+#include "lrt/accelerators/bvh.h"
+#include "lrt/core/base.h"
+#include "lrt/core/geometry.h"
+#include "lrt/core/primitive.h"
+#include "lrt/shapes/triangle.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace lrt {
+
+struct FastBVHBuildPrim;
+struct FastBox;
+// FastBVHAccel Node Types
+struct FastBVHChild {
+    uint32_t offset;
+    uint16_t nTriangles, nOthers;
+    bool IsLeaf() const { return nTriangles + nOthers > 0; }
+    int NPrimitives() const { return nTriangles + nOthers; }
+};
+
+struct alignas(64) FastBVHNode {
+    Float bounds[3][2][2];
+    FastBVHChild child[2];
+};
+static_assert(sizeof(FastBVHNode) == (sizeof(Float) == 4 ? 64 : 128),
+              "FastBVHNode should fill one cache line");
+// FastBVHAccel Node Types
+struct FastTriangle {
+    Float v[3][3];
+};
+
+struct FastPrimitiveRef {
+    const Primitive *primitive;
+    const Triangle *triangle;
+};
+// FastBVHAccel Declarations
+class FastBVHAccel : public Aggregate {
+  public:
+    using SplitMethod = BVHAccel::SplitMethod;
+    // FastBVHAccel Public Methods
+    FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
+                 int maxPrimsInNode = 8,
+                 SplitMethod splitMethod = SplitMethod::SAH);
+    explicit FastBVHAccel(const BVHAccel &bvh);
+    Bounds3f WorldBound() const override;
+    bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override;
+    bool IntersectP(const Ray &ray) const override;
+    // FastBVHAccel Public Methods
+    const std::vector<FastBVHNode> &Nodes() const { return nodes; }
+    FastBVHChild Root() const { return root; }
+    const std::vector<std::shared_ptr<Primitive>> &Primitives() const {
+        return primitives;
+    }
+    const std::vector<FastTriangle> &Triangles() const { return triangles; }
+    int MaxPrimsInNode() const { return maxPrimsInNode; }
+    BVHStats Stats() const;
+  private:
+    // FastBVHAccel Private Methods
+    FastBVHChild BuildSAH(std::vector<FastBVHBuildPrim> &prims, int start,
+                          int end, const FastBox &box, int depth);
+    FastBVHChild MakeLeaf(std::vector<FastBVHBuildPrim> &prims, int start,
+                          int end) const;
+    // FastBVHAccel Private Methods
+    void CopyTree(const BVHAccel &bvh);
+    FastBVHChild CopySubtree(const BVHAccel &bvh, int index);
+    // FastBVHAccel Private Data
+    int maxPrimsInNode;
+    std::vector<std::shared_ptr<Primitive>> primitives;
+    std::vector<FastPrimitiveRef> refs;
+    std::vector<FastTriangle> triangles;
+    std::vector<FastBVHNode> nodes;
+    FastBVHChild root = {0, 0, 0};
+    FastBVHNode rootNode = {};
+};
+
+}  // namespace lrt

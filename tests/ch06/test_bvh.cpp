@@ -1,0 +1,961 @@
+// Tests of chapter 6's bounding volume hierarchies, BVHAccel and
+// FastBVHAccel: every split method and several leaf sizes against a
+// brute-force loop over the primitives, on thousands of random scenes of
+// spheres, disks and triangles; structure invariants of every tree built;
+// degenerate inputs; Morton codes against a bit-by-bit interleaving.
+
+#include "lrt/lrt.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace lrt;
+using SplitMethod = BVHAccel::SplitMethod;
+
+namespace {
+
+constexpr int kRandomScenes = 1200;
+constexpr int kRaysPerScene = 32;
+constexpr int kMaxFailuresReported = 10;
+const SplitMethod kMethods[] = {SplitMethod::SAH, SplitMethod::HLBVH,
+                                SplitMethod::Middle,
+                                SplitMethod::EqualCounts};
+const int kLeafSizes[] = {1, 2, 4, 7, 255};
+// Two primitives hit at nearly the same distance may be reported in either
+// order when their error bounds overlap; the distance reported may then
+// exceed the smallest one by this relative amount.
+const Float kTieTolerance = 256 * std::numeric_limits<Float>::epsilon();
+
+const char *MethodName(SplitMethod m) {
+    switch (m) {
+    case SplitMethod::SAH: return "SAH";
+    case SplitMethod::HLBVH: return "HLBVH";
+    case SplitMethod::Middle: return "Middle";
+    case SplitMethod::EqualCounts: return "EqualCounts";
+    }
+    return "?";
+}
+
+// A scene owns its transformations: shapes keep pointers to them.
+struct Scene {
+    std::vector<std::unique_ptr<Transform>> transforms;
+    std::vector<std::shared_ptr<Primitive>> prims;
+    Bounds3f bounds;
+
+    const Transform *Keep(const Transform &t) {
+        transforms.push_back(std::make_unique<Transform>(t));
+        return transforms.back().get();
+    }
+    void Add(const std::shared_ptr<Shape> &s) {
+        prims.push_back(std::make_shared<GeometricPrimitive>(s));
+        bounds = Union(bounds, prims.back()->WorldBound());
+    }
+    void AddTriangles(const std::vector<Point3f> &p,
+                      const std::vector<int> &indices) {
+        const Transform *id = Keep(Transform());
+        auto tris = CreateTriangleMesh(id, id, false,
+                                       int(indices.size() / 3),
+                                       indices.data(), int(p.size()),
+                                       p.data(), nullptr, nullptr, nullptr);
+        for (auto &t : tris) Add(t);
+    }
+};
+
+double U(std::mt19937_64 &rng, double a, double b) {
+    return std::uniform_real_distribution<double>(a, b)(rng);
+}
+
+Vector3f RandomDirection(std::mt19937_64 &rng) {
+    std::normal_distribution<double> n(0, 1);
+    for (;;) {
+        double x = n(rng), y = n(rng), z = n(rng);
+        double l = std::sqrt(x * x + y * y + z * z);
+        if (l > 1e-3)
+            return Vector3f(Float(x / l), Float(y / l), Float(z / l));
+    }
+}
+
+Point3f RandomPoint(std::mt19937_64 &rng, const Point3f &c, double r) {
+    return Point3f(Float(c.x + U(rng, -r, r)), Float(c.y + U(rng, -r, r)),
+                   Float(c.z + U(rng, -r, r)));
+}
+
+// A random scene: clusters of small primitives and a few large ones, so
+// that the split methods produce trees of varied shapes.
+Scene RandomScene(std::mt19937_64 &rng) {
+    Scene scene;
+    int n = 1 + int(rng() % 40);
+    if (rng() % 8 == 0) n += int(rng() % 160);
+    int nClusters = 1 + int(rng() % 3);
+    std::vector<Point3f> centers;
+    for (int i = 0; i < nClusters; ++i)
+        centers.push_back(RandomPoint(rng, Point3f(0, 0, 0), 8));
+    while (int(scene.prims.size()) < n) {
+        Point3f c = RandomPoint(rng, centers[rng() % nClusters], 3);
+        double size = rng() % 10 == 0 ? U(rng, 1, 4) : U(rng, 0.05, 1);
+        int kind = int(rng() % 3);
+        if (kind == 0) {
+            Transform o2w = Translate(Vector3f(c)) *
+                            Rotate(Float(U(rng, 0, 360)), RandomDirection(rng));
+            if (rng() % 3 == 0)
+                o2w = o2w * Scale(Float(U(rng, 0.3, 2)),
+                                  Float(U(rng, 0.3, 2)),
+                                  Float(U(rng, 0.3, 2)));
+            const Transform *a = scene.Keep(o2w);
+            const Transform *b = scene.Keep(Inverse(o2w));
+            Float r = Float(size);
+            Float zMin = -r, zMax = r, phiMax = 360;
+            if (rng() % 4 == 0) {
+                zMin = Float(U(rng, -1, 0.2)) * r;
+                zMax = Float(U(rng, 0.3, 1)) * r;
+                phiMax = Float(U(rng, 30, 360));
+            }
+            scene.Add(std::make_shared<Sphere>(a, b, rng() % 2 == 0, r, zMin,
+                                               zMax, phiMax));
+        } else if (kind == 1) {
+            Transform o2w = Translate(Vector3f(c));
+            if (rng() % 3 != 0)  // else: axis-aligned, with a flat box
+                o2w = o2w * Rotate(Float(U(rng, 0, 360)), RandomDirection(rng));
+            const Transform *a = scene.Keep(o2w);
+            const Transform *b = scene.Keep(Inverse(o2w));
+            Float r = Float(size);
+            Float ri = rng() % 3 == 0 ? Float(U(rng, 0, 0.8)) * r : 0;
+            Float phiMax = rng() % 3 == 0 ? Float(U(rng, 30, 360)) : 360;
+            scene.Add(std::make_shared<Disk>(a, b, false, Float(U(rng, -1, 1)),
+                                             r, ri, phiMax));
+        } else {
+            // A small strip of triangles sharing edges; sometimes flat in z.
+            int nt = 1 + int(rng() % 4);
+            bool flat = rng() % 4 == 0;
+            std::vector<Point3f> p;
+            std::vector<int> idx;
+            for (int i = 0; i < nt + 2; ++i) {
+                Point3f q = RandomPoint(rng, c, size);
+                if (flat) q.z = c.z;
+                p.push_back(q);
+            }
+            for (int i = 0; i < nt; ++i) {
+                idx.push_back(i);
+                idx.push_back(i + 1);
+                idx.push_back(i + 2);
+            }
+            scene.AddTriangles(p, idx);
+        }
+    }
+    return scene;
+}
+
+// Rays start inside the scene's box (and so inside many nodes' boxes) or
+// outside it; some are parallel to coordinate planes, some have a finite
+// tMax.
+Ray RandomRay(std::mt19937_64 &rng, const Bounds3f &b,
+              const std::vector<std::shared_ptr<Primitive>> *prims = nullptr) {
+    Vector3f diag = b.Diagonal();
+    double r = 0.5 * std::max(diag.x, std::max(diag.y, diag.z)) + 1;
+    Point3f c = b.pMin * Float(0.5) + b.pMax * Float(0.5);
+    Point3f o = rng() % 2 ? RandomPoint(rng, c, r * 0.8)
+                          : RandomPoint(rng, c, r * 2);
+    Vector3f d;
+    if (prims && !prims->empty() && rng() % 4 != 0) {
+        // Aim at a point in a random primitive's box: many such rays hit.
+        Bounds3f pb = (*prims)[rng() % prims->size()]->WorldBound();
+        Point3f target(Float(U(rng, pb.pMin.x, pb.pMax.x)),
+                       Float(U(rng, pb.pMin.y, pb.pMax.y)),
+                       Float(U(rng, pb.pMin.z, pb.pMax.z)));
+        d = target - o;
+        if (d.LengthSquared() == 0) d = Vector3f(1, 0, 0);
+        d = Normalize(d);
+    } else if (rng() % 2) {
+        d = Normalize(RandomPoint(rng, c, r * 0.7) - o);
+    } else {
+        d = RandomDirection(rng);
+    }
+    if (rng() % 8 == 0) {
+        int axis = int(rng() % 3);
+        d[axis] = rng() % 2 ? Float(0) : -Float(0);
+        if (d.LengthSquared() == 0) d[(axis + 1) % 3] = 1;
+        d = Normalize(d);
+    }
+    Float tMax = Infinity;
+    if (rng() % 2) tMax = Float(U(rng, 0, 3 * r));
+    return Ray(o, d, tMax);
+}
+
+struct OracleHit {
+    const Primitive *prim;
+    Float t;
+};
+
+struct Oracle {
+    std::vector<OracleHit> hits;  // every primitive hit, at its distance
+    bool anyP = false;            // some primitive's IntersectP is true
+    Float tMin = Infinity;
+};
+
+Oracle BruteForce(const std::vector<std::shared_ptr<Primitive>> &prims,
+                  const Ray &ray) {
+    Oracle o;
+    for (const auto &p : prims) {
+        if (!IsFiniteBox(p->WorldBound())) continue;
+        Ray r(ray.o, ray.d, ray.tMax, ray.time);
+        SurfaceInteraction si;
+        if (p->Intersect(r, &si)) {
+            o.hits.push_back({p.get(), r.tMax});
+            o.tMin = std::min(o.tMin, r.tMax);
+        }
+        if (p->IntersectP(ray)) o.anyP = true;
+    }
+    return o;
+}
+
+// Returns an empty string if the accelerator agrees with the oracle.
+std::string Compare(const Primitive &accel, const Ray &ray0,
+                    const Oracle &o) {
+    std::ostringstream err;
+    Ray ray = ray0;
+    SurfaceInteraction si;
+    bool hit = accel.Intersect(ray, &si);
+    if (hit != !o.hits.empty()) {
+        err << "Intersect() says " << hit << ", brute force found "
+            << o.hits.size() << " hits";
+        return err.str();
+    }
+    if (hit) {
+        const OracleHit *h = nullptr;
+        for (const OracleHit &oh : o.hits)
+            if (oh.prim == si.primitive) h = &oh;
+        if (!h)
+            err << "reported primitive is not one that the ray hits";
+        else if (h->t != ray.tMax)
+            err << "t = " << ray.tMax << " but the primitive reports "
+                << h->t;
+        else if (ray.tMax > o.tMin * (1 + kTieTolerance))
+            err << "t = " << ray.tMax << " but the closest hit is at "
+                << o.tMin;
+    } else if (!(ray.tMax == ray0.tMax) &&
+               !(std::isnan(ray.tMax) && std::isnan(ray0.tMax))) {
+        err << "a miss changed tMax";
+    }
+    if (accel.IntersectP(ray0) != o.anyP)
+        err << " IntersectP() says " << !o.anyP << ", brute force "
+            << o.anyP;
+    return err.str();
+}
+
+std::multiset<const Primitive *> ValidPrimitives(
+    const std::vector<std::shared_ptr<Primitive>> &input) {
+    std::multiset<const Primitive *> s;
+    for (const auto &p : input)
+        if (IsFiniteBox(p->WorldBound())) s.insert(p.get());
+    return s;
+}
+
+const Triangle *AsTriangle(const Primitive *p) {
+    auto gp = dynamic_cast<const GeometricPrimitive *>(p);
+    return gp ? dynamic_cast<const Triangle *>(gp->GetShape()) : nullptr;
+}
+
+// Structure of a BVHAccel: depth-first layout, boxes equal to the union of
+// what is below them, leaf sizes within the limit, every valid primitive
+// in exactly one leaf, node counts consistent with Stats().
+void CheckStructure(const BVHAccel &bvh,
+                    const std::vector<std::shared_ptr<Primitive>> &input) {
+    const std::vector<LinearBVHNode> &nodes = bvh.Nodes();
+    const auto &prims = bvh.Primitives();
+    std::multiset<const Primitive *> got;
+    for (const auto &p : prims) got.insert(p.get());
+    ASSERT_EQ(got, ValidPrimitives(input));
+    BVHStats s = bvh.Stats();
+    if (nodes.empty()) {
+        EXPECT_TRUE(prims.empty());
+        EXPECT_EQ(s.TotalNodes(), 0);
+        EXPECT_TRUE(bvh.WorldBound().IsEmpty());
+        return;
+    }
+    std::vector<int> visited(nodes.size(), 0), covered(prims.size(), 0);
+    int maxDepth = 0, leaves = 0;
+    std::function<Bounds3f(int, int)> visit = [&](int i,
+                                                  int depth) -> Bounds3f {
+        maxDepth = std::max(maxDepth, depth);
+        visited[i]++;
+        const LinearBVHNode &n = nodes[i];
+        Bounds3f b;
+        if (n.nPrimitives > 0) {
+            ++leaves;
+            EXPECT_LE(n.nPrimitives, bvh.MaxPrimsInNode());
+            EXPECT_GE(n.primitivesOffset, 0);
+            EXPECT_LE(n.primitivesOffset + n.nPrimitives, int(prims.size()));
+            for (int k = n.primitivesOffset;
+                 k < n.primitivesOffset + n.nPrimitives &&
+                 k < int(prims.size());
+                 ++k) {
+                covered[k]++;
+                b = Union(b, prims[k]->WorldBound());
+            }
+        } else {
+            EXPECT_LT(n.axis, 3);
+            if (i + 1 >= int(nodes.size()) || n.secondChildOffset <= i + 1 ||
+                n.secondChildOffset >= int(nodes.size())) {
+                ADD_FAILURE() << "bad child offsets at node " << i;
+                return n.bounds;
+            }
+            b = Union(visit(i + 1, depth + 1),
+                      visit(n.secondChildOffset, depth + 1));
+        }
+        EXPECT_EQ(n.bounds, b) << "node " << i;
+        return n.bounds;
+    };
+    EXPECT_EQ(visit(0, 0), bvh.WorldBound());
+    for (size_t i = 0; i < visited.size(); ++i)
+        ASSERT_EQ(visited[i], 1) << "node " << i;
+    for (size_t i = 0; i < covered.size(); ++i)
+        ASSERT_EQ(covered[i], 1) << "primitive " << i;
+    EXPECT_LE(maxDepth, maxBVHDepth);
+    EXPECT_EQ(s.TotalNodes(), int64_t(nodes.size()));
+    EXPECT_EQ(s.leafNodes, leaves);
+    EXPECT_EQ(2 * s.leafNodes - 1, s.TotalNodes());
+    EXPECT_EQ(s.primitives, int64_t(prims.size()));
+    EXPECT_EQ(s.maxDepth, maxDepth);
+    EXPECT_GE(s.sahCost, 1);
+}
+
+// A child's box in a FastBVHNode: bounds[axis][min or max][child].
+Bounds3f BoxOf(const FastBVHNode &n, int c) {
+    Bounds3f r;
+    r.pMin = Point3f(n.bounds[0][0][c], n.bounds[1][0][c], n.bounds[2][0][c]);
+    r.pMax = Point3f(n.bounds[0][1][c], n.bounds[1][1][c], n.bounds[2][1][c]);
+    return r;
+}
+
+// The same for FastBVHAccel, whose boxes are stored in the parents and
+// whose leaves put triangles, with their vertices copied, first.
+void CheckStructure(const FastBVHAccel &bvh,
+                    const std::vector<std::shared_ptr<Primitive>> &input) {
+    const std::vector<FastBVHNode> &nodes = bvh.Nodes();
+    const auto &prims = bvh.Primitives();
+    const auto &tris = bvh.Triangles();
+    std::multiset<const Primitive *> got;
+    for (const auto &p : prims) got.insert(p.get());
+    ASSERT_EQ(got, ValidPrimitives(input));
+    ASSERT_EQ(tris.size(), prims.size());
+    BVHStats s = bvh.Stats();
+    if (prims.empty()) {
+        EXPECT_TRUE(nodes.empty());
+        EXPECT_EQ(s.TotalNodes(), 0);
+        EXPECT_TRUE(bvh.WorldBound().IsEmpty());
+        return;
+    }
+    std::vector<int> visited(nodes.size(), 0), covered(prims.size(), 0);
+    int maxDepth = 0, leaves = 0;
+    std::function<Bounds3f(FastBVHChild, int)> visit =
+        [&](FastBVHChild c, int depth) -> Bounds3f {
+        maxDepth = std::max(maxDepth, depth);
+        Bounds3f b;
+        if (c.IsLeaf()) {
+            ++leaves;
+            EXPECT_LE(c.NPrimitives(), bvh.MaxPrimsInNode());
+            EXPECT_LE(size_t(c.offset) + c.NPrimitives(), prims.size());
+            for (int i = 0; i < c.NPrimitives() &&
+                            size_t(c.offset) + i < prims.size();
+                 ++i) {
+                size_t k = c.offset + i;
+                covered[k]++;
+                b = Union(b, prims[k]->WorldBound());
+                const Triangle *tri = AsTriangle(prims[k].get());
+                EXPECT_EQ(tri != nullptr, i < c.nTriangles) << k;
+                if (tri) {
+                    Point3f q[3];
+                    tri->GetVertices(&q[0], &q[1], &q[2]);
+                    for (int j = 0; j < 3; ++j)
+                        for (int a = 0; a < 3; ++a)
+                            EXPECT_EQ(tris[k].v[j][a], q[j][a]);
+                }
+            }
+            return b;
+        }
+        if (c.offset >= nodes.size()) {
+            ADD_FAILURE() << "bad node index " << c.offset;
+            return b;
+        }
+        visited[c.offset]++;
+        const FastBVHNode &n = nodes[c.offset];
+        for (int k = 0; k < 2; ++k) {
+            Bounds3f bk = visit(n.child[k], depth + 1);
+            EXPECT_EQ(BoxOf(n, k), bk) << "node " << c.offset;
+            b = Union(b, bk);
+        }
+        return b;
+    };
+    EXPECT_EQ(visit(bvh.Root(), 0), bvh.WorldBound());
+    for (size_t i = 0; i < visited.size(); ++i)
+        ASSERT_EQ(visited[i], 1) << "node " << i;
+    for (size_t i = 0; i < covered.size(); ++i)
+        ASSERT_EQ(covered[i], 1) << "primitive " << i;
+    EXPECT_LE(maxDepth, maxBVHDepth);
+    EXPECT_EQ(s.interiorNodes, int64_t(nodes.size()));
+    EXPECT_EQ(s.leafNodes, leaves);
+    EXPECT_EQ(2 * s.leafNodes - 1, s.TotalNodes());
+    EXPECT_EQ(s.primitives, int64_t(prims.size()));
+    EXPECT_EQ(s.maxDepth, maxDepth);
+}
+
+// Builds every kind of accelerator over the scene with the given split
+// method and leaf sizes, checks their structure, and compares each with
+// brute force on random rays.
+void RunRandomScenes(SplitMethod method, uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    int failures = 0;
+    int64_t rays = 0, hits = 0;
+    for (int sceneIndex = 0; sceneIndex < kRandomScenes; ++sceneIndex) {
+        Scene scene = RandomScene(rng);
+        std::vector<std::unique_ptr<Primitive>> accels;
+        std::vector<std::string> names;
+        for (int leafSize : kLeafSizes) {
+            auto bvh = std::make_unique<BVHAccel>(scene.prims, leafSize,
+                                                  method);
+            CheckStructure(*bvh, scene.prims);
+            auto adopted = std::make_unique<FastBVHAccel>(*bvh);
+            CheckStructure(*adopted, scene.prims);
+            auto fast = std::make_unique<FastBVHAccel>(scene.prims, leafSize,
+                                                       method);
+            CheckStructure(*fast, scene.prims);
+            std::string suffix = "(" + std::to_string(leafSize) + ")";
+            names.push_back("BVHAccel" + suffix);
+            names.push_back("FastBVHAccel from BVHAccel" + suffix);
+            names.push_back("FastBVHAccel" + suffix);
+            accels.push_back(std::move(bvh));
+            accels.push_back(std::move(adopted));
+            accels.push_back(std::move(fast));
+        }
+        if (::testing::Test::HasFatalFailure()) return;
+        for (int r = 0; r < kRaysPerScene; ++r) {
+            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
+            Oracle o = BruteForce(scene.prims, ray);
+            ++rays;
+            hits += !o.hits.empty();
+            for (size_t a = 0; a < accels.size(); ++a) {
+                std::string e = Compare(*accels[a], ray, o);
+                if (!e.empty() && failures++ < kMaxFailuresReported)
+                    ADD_FAILURE() << MethodName(method) << " " << names[a]
+                                  << ", scene " << sceneIndex << " ("
+                                  << scene.prims.size() << " primitives), ray "
+                                  << ray << ": " << e;
+            }
+        }
+    }
+    EXPECT_EQ(failures, 0);
+    // The rays must actually exercise hits, and misses.
+    EXPECT_GT(hits, rays / 5);
+    EXPECT_LT(hits, rays * 9 / 10);
+}
+
+std::shared_ptr<Primitive> UnitSphereAt(Scene &scene, const Point3f &c,
+                                        Float r = 1) {
+    const Transform *a = scene.Keep(Translate(Vector3f(c)));
+    const Transform *b = scene.Keep(Translate(-Vector3f(c)));
+    auto s = std::make_shared<Sphere>(a, b, false, r, -r, r, 360.f);
+    scene.Add(s);
+    return scene.prims.back();
+}
+
+// A primitive whose bounds are whatever the test says, and which is hit by
+// every ray at t = 1: it must never be reported by a BVH that skips it.
+class OddBoundsPrimitive : public Primitive {
+  public:
+    explicit OddBoundsPrimitive(const Bounds3f &b) : b(b) {}
+    Bounds3f WorldBound() const override { return b; }
+    bool Intersect(const Ray &r, SurfaceInteraction *isect) const override {
+        if (r.tMax < 1) return false;
+        r.tMax = 1;
+        isect->primitive = this;
+        return true;
+    }
+    bool IntersectP(const Ray &r) const override { return r.tMax >= 1; }
+
+  private:
+    Bounds3f b;
+};
+
+template <typename Accel>
+std::vector<std::unique_ptr<Primitive>> AllAccelerators(
+    const std::vector<std::shared_ptr<Primitive>> &prims, int leafSize) {
+    std::vector<std::unique_ptr<Primitive>> v;
+    for (SplitMethod m : kMethods)
+        v.push_back(std::make_unique<Accel>(prims, leafSize, m));
+    return v;
+}
+
+}  // namespace
+
+TEST(BVHRandomScenes, SAH) { RunRandomScenes(SplitMethod::SAH, 601); }
+TEST(BVHRandomScenes, HLBVH) { RunRandomScenes(SplitMethod::HLBVH, 602); }
+TEST(BVHRandomScenes, Middle) { RunRandomScenes(SplitMethod::Middle, 603); }
+TEST(BVHRandomScenes, EqualCounts) {
+    RunRandomScenes(SplitMethod::EqualCounts, 604);
+}
+
+TEST(BVHDegenerate, NoPrimitives) {
+    std::vector<std::shared_ptr<Primitive>> none;
+    for (SplitMethod m : kMethods) {
+        BVHAccel bvh(none, 4, m);
+        FastBVHAccel fast(none, 4, m);
+        FastBVHAccel adopted(bvh);
+        CheckStructure(bvh, none);
+        CheckStructure(fast, none);
+        CheckStructure(adopted, none);
+        for (const Primitive *p :
+             {(const Primitive *)&bvh, (const Primitive *)&fast,
+              (const Primitive *)&adopted}) {
+            Ray ray(Point3f(0, 0, 0), Vector3f(0, 0, 1));
+            SurfaceInteraction si;
+            EXPECT_FALSE(p->Intersect(ray, &si));
+            EXPECT_EQ(ray.tMax, Infinity);
+            EXPECT_FALSE(p->IntersectP(ray));
+            EXPECT_TRUE(p->WorldBound().IsEmpty());
+        }
+    }
+}
+
+TEST(BVHDegenerate, OnePrimitive) {
+    Scene scene;
+    UnitSphereAt(scene, Point3f(1, 2, 3), 0.5f);
+    std::mt19937_64 rng(611);
+    for (int leafSize : {1, 4}) {
+        auto accels = AllAccelerators<BVHAccel>(scene.prims, leafSize);
+        auto fast = AllAccelerators<FastBVHAccel>(scene.prims, leafSize);
+        for (auto &f : fast) accels.push_back(std::move(f));
+        for (int i = 0; i < 2000; ++i) {
+            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
+            Oracle o = BruteForce(scene.prims, ray);
+            for (auto &a : accels) EXPECT_EQ(Compare(*a, ray, o), "");
+        }
+        BVHAccel bvh(scene.prims, leafSize);
+        EXPECT_EQ(bvh.Nodes().size(), 1u);
+        EXPECT_EQ(bvh.WorldBound(), scene.prims[0]->WorldBound());
+    }
+}
+
+TEST(BVHDegenerate, ArgumentChecks) {
+    Scene scene;
+    UnitSphereAt(scene, Point3f(0, 0, 0));
+    std::vector<std::shared_ptr<Primitive>> withNull = scene.prims;
+    withNull.push_back(nullptr);
+    EXPECT_THROW(BVHAccel(withNull, 4), std::invalid_argument);
+    EXPECT_THROW(FastBVHAccel(withNull, 4), std::invalid_argument);
+    EXPECT_THROW(BVHAccel(scene.prims, 4, SplitMethod(17)),
+                 std::invalid_argument);
+    EXPECT_THROW(FastBVHAccel(scene.prims, 4, SplitMethod(17)),
+                 std::invalid_argument);
+    // Leaf sizes are clamped to [1, 255].
+    EXPECT_EQ(BVHAccel(scene.prims, 0).MaxPrimsInNode(), 1);
+    EXPECT_EQ(BVHAccel(scene.prims, -5).MaxPrimsInNode(), 1);
+    EXPECT_EQ(BVHAccel(scene.prims, 1000).MaxPrimsInNode(), 255);
+    EXPECT_EQ(FastBVHAccel(scene.prims, 0).MaxPrimsInNode(), 1);
+    EXPECT_EQ(FastBVHAccel(scene.prims, 1000).MaxPrimsInNode(), 255);
+}
+
+// Many primitives with the same centroid: pbrt would make one leaf of all
+// of them; ours keeps leaves within the limit, and 70,000 copies of one
+// triangle (more than a 16-bit count holds) must work.
+TEST(BVHDegenerate, AllCentroidsEqual) {
+    Scene scene;
+    std::vector<Point3f> p = {Point3f(-1, -1, 0), Point3f(1, -1, 0),
+                              Point3f(0, 2, 0)};
+    std::vector<int> idx;
+    for (int i = 0; i < 70000; ++i) idx.insert(idx.end(), {0, 1, 2});
+    scene.AddTriangles(p, idx);
+    for (int i = 0; i < 50; ++i)  // concentric spheres: equal centroids
+        UnitSphereAt(scene, Point3f(0, 0, 0), 3 + Float(i) / 10);
+    for (int leafSize : {1, 4}) {
+        for (SplitMethod m : kMethods) {
+            BVHAccel bvh(scene.prims, leafSize, m);
+            CheckStructure(bvh, scene.prims);
+            FastBVHAccel fast(scene.prims, leafSize, m);
+            CheckStructure(fast, scene.prims);
+            for (const Primitive *a :
+                 {(const Primitive *)&bvh, (const Primitive *)&fast}) {
+                // From inside all the spheres, down onto the triangle.
+                Ray ray(Point3f(0.1f, 0.2f, 1), Vector3f(0, 0, -1));
+                SurfaceInteraction si;
+                ASSERT_TRUE(a->Intersect(ray, &si));
+                EXPECT_EQ(ray.tMax, 1);
+                EXPECT_NE(AsTriangle(si.primitive), nullptr);
+                // From outside: the largest sphere comes first.
+                Ray out(Point3f(0, 0, 20), Vector3f(0, 0, -1));
+                ASSERT_TRUE(a->Intersect(out, &si));
+                EXPECT_NEAR(out.tMax, 20 - 7.9f, 1e-4f);
+                EXPECT_TRUE(a->IntersectP(Ray(Point3f(0.1f, 0.2f, 1),
+                                              Vector3f(0, 0, -1), 1.5f)));
+                EXPECT_FALSE(a->IntersectP(Ray(Point3f(0.1f, 0.2f, 1),
+                                               Vector3f(0, 0, -1), 0.5f)));
+            }
+        }
+    }
+}
+
+// Boxes of zero extent in one or more dimensions: flat triangles and disks
+// in coordinate planes, rays lying in those planes, and triangles that
+// collapse to a point (which no ray can hit).
+TEST(BVHDegenerate, ZeroExtentBoxes) {
+    Scene scene;
+    std::vector<Point3f> p;
+    std::vector<int> idx;
+    for (int i = 0; i < 40; ++i) {
+        Float x = Float(i % 8), y = Float(i / 8);
+        p.insert(p.end(), {Point3f(x, y, 0), Point3f(x + 1, y, 0),
+                           Point3f(x, y + 1, 0)});
+        idx.insert(idx.end(), {3 * i, 3 * i + 1, 3 * i + 2});
+    }
+    for (int i = 0; i < 10; ++i) {  // points
+        int base = int(p.size());
+        Point3f q(Float(i), 3.5f, 2);
+        p.insert(p.end(), {q, q, q});
+        idx.insert(idx.end(), {base, base + 1, base + 2});
+    }
+    scene.AddTriangles(p, idx);
+    for (int i = 0; i < 10; ++i) {
+        const Transform *a = scene.Keep(Translate(Vector3f(Float(i), 7, 0)));
+        const Transform *b = scene.Keep(Translate(Vector3f(-Float(i), -7, 0)));
+        scene.Add(std::make_shared<Disk>(a, b, false, 1.f, 0.4f, 0.f, 360.f));
+    }
+    std::mt19937_64 rng(612);
+    int failures = 0;
+    for (int leafSize : {1, 3, 16}) {
+        auto accels = AllAccelerators<BVHAccel>(scene.prims, leafSize);
+        auto fast = AllAccelerators<FastBVHAccel>(scene.prims, leafSize);
+        for (auto &f : fast) accels.push_back(std::move(f));
+        for (int i = 0; i < 3000; ++i) {
+            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
+            if (i % 3 == 0) {  // in the plane z = 0 or z = 1
+                ray.o.z = Float(i % 2);
+                ray.d.z = i % 6 == 0 ? Float(0) : -Float(0);
+                if (ray.d.LengthSquared() == 0) ray.d.x = 1;
+            }
+            Oracle o = BruteForce(scene.prims, ray);
+            for (auto &a : accels) {
+                std::string e = Compare(*a, ray, o);
+                if (!e.empty() && failures++ < kMaxFailuresReported)
+                    ADD_FAILURE() << ray << ": " << e;
+            }
+        }
+        // Straight down onto each flat triangle and disk.
+        for (auto &a : accels) {
+            Ray down(Point3f(3.25f, 2.25f, 5), Vector3f(0, 0, -1));
+            SurfaceInteraction si;
+            ASSERT_TRUE(a->Intersect(down, &si));
+            EXPECT_EQ(down.tMax, 5);
+            Ray disk(Point3f(4.1f, 7.1f, 5), Vector3f(0, 0, -1));
+            ASSERT_TRUE(a->Intersect(disk, &si));
+            EXPECT_NEAR(disk.tMax, 4, 1e-5f);
+        }
+    }
+}
+
+// Primitives whose bounds are not finite, nonempty boxes are skipped: a
+// triangle mesh with a NaN vertex is refused by TriangleMesh itself, and a
+// primitive that reports a NaN, infinite or empty box (an empty aggregate,
+// for one) is left out of the tree and never hit.
+TEST(BVHDegenerate, NaNAndInfiniteBounds) {
+    Transform id;
+    int tri[3] = {0, 1, 2};
+    Point3f bad[3] = {Point3f(0, 0, 0), Point3f(1, 0, 0),
+                      Point3f(0, std::numeric_limits<Float>::quiet_NaN(), 0)};
+    EXPECT_THROW(CreateTriangleMesh(&id, &id, false, 1, tri, 3, bad, nullptr,
+                                    nullptr, nullptr),
+                 std::invalid_argument);
+
+    Scene scene;
+    UnitSphereAt(scene, Point3f(0, 0, 5));
+    UnitSphereAt(scene, Point3f(3, 0, 5));
+    const Float nan = std::numeric_limits<Float>::quiet_NaN();
+    std::vector<std::shared_ptr<Primitive>> prims = scene.prims;
+    Bounds3f nanBox(Point3f(0, 0, 0), Point3f(1, 1, 1));
+    nanBox.pMax.y = nan;
+    Bounds3f infBox(Point3f(0, 0, 0), Point3f(Infinity, 1, 1));
+    Bounds3f hugeBox(Point3f(-MaxFloat, -MaxFloat, -MaxFloat),
+                     Point3f(MaxFloat, MaxFloat, MaxFloat));
+    prims.push_back(std::make_shared<OddBoundsPrimitive>(nanBox));
+    prims.push_back(std::make_shared<OddBoundsPrimitive>(infBox));
+    prims.push_back(std::make_shared<OddBoundsPrimitive>(Bounds3f()));
+    std::vector<std::shared_ptr<Primitive>> none;
+    prims.push_back(std::make_shared<BVHAccel>(none));
+    // A finite box at the limits of the range is kept (and its centroid
+    // must not overflow).
+    auto huge = std::make_shared<OddBoundsPrimitive>(hugeBox);
+    std::vector<std::shared_ptr<Primitive>> withHuge = prims;
+    withHuge.push_back(huge);
+    for (int leafSize : {1, 4}) {
+        for (SplitMethod m : kMethods) {
+            BVHAccel bvh(prims, leafSize, m);
+            FastBVHAccel fast(prims, leafSize, m);
+            CheckStructure(bvh, prims);
+            CheckStructure(fast, prims);
+            EXPECT_EQ(bvh.Primitives().size(), 2u);
+            EXPECT_EQ(fast.Primitives().size(), 2u);
+            for (const Primitive *a :
+                 {(const Primitive *)&bvh, (const Primitive *)&fast}) {
+                Ray ray(Point3f(0, 0, 0), Vector3f(0, 0, 1));
+                SurfaceInteraction si;
+                ASSERT_TRUE(a->Intersect(ray, &si));
+                EXPECT_NEAR(ray.tMax, 4, 1e-5f);  // the sphere, not t = 1
+                EXPECT_FALSE(a->IntersectP(Ray(Point3f(0, 0, 0),
+                                               Vector3f(0, 0, 1), 2)));
+            }
+            BVHAccel bvhHuge(withHuge, leafSize, m);
+            FastBVHAccel fastHuge(withHuge, leafSize, m);
+            CheckStructure(bvhHuge, withHuge);
+            CheckStructure(fastHuge, withHuge);
+            for (const Primitive *a :
+                 {(const Primitive *)&bvhHuge, (const Primitive *)&fastHuge}) {
+                Ray ray(Point3f(0, 0, 0), Vector3f(0, 0, 1));
+                SurfaceInteraction si;
+                ASSERT_TRUE(a->Intersect(ray, &si));
+                EXPECT_EQ(ray.tMax, 1);
+                EXPECT_EQ(si.primitive, huge.get());
+            }
+        }
+    }
+}
+
+// Centroids at 1, 1/2, 1/4, ...: Middle and the SAH split off one
+// primitive per level, which would make a chain far deeper than the
+// traversal stack. The depth bound keeps every tree within it.
+TEST(BVHDegenerate, ExponentiallySpacedCentroidsStayShallow) {
+    Scene scene;
+    std::vector<Point3f> p;
+    std::vector<int> idx;
+    int n = sizeof(Float) == 4 ? 140 : 1000;
+    for (int i = 0; i < n; ++i) {
+        Float x = std::ldexp(Float(1), -i);
+        Float h = x / 4;
+        int base = int(p.size());
+        p.insert(p.end(), {Point3f(x - h, -1, 0), Point3f(x + h, -1, 0),
+                           Point3f(x, 1, 0)});
+        idx.insert(idx.end(), {base, base + 1, base + 2});
+    }
+    scene.AddTriangles(p, idx);
+    std::mt19937_64 rng(613);
+    int failures = 0;
+    for (int leafSize : {1, 2}) {
+        for (SplitMethod m : kMethods) {
+            BVHAccel bvh(scene.prims, leafSize, m);
+            CheckStructure(bvh, scene.prims);
+            FastBVHAccel fast(scene.prims, leafSize, m);
+            CheckStructure(fast, scene.prims);
+            EXPECT_LE(bvh.Stats().maxDepth, maxBVHDepth);
+            EXPECT_LE(fast.Stats().maxDepth, maxBVHDepth);
+            for (int i = 0; i < 2000; ++i) {
+                Ray ray(Point3f(std::ldexp(Float(1), -int(rng() % n)) *
+                                    Float(U(rng, 0.8, 1.2)),
+                                Float(U(rng, -1, 1)), 1),
+                        Vector3f(0, 0, -1));
+                Oracle o = BruteForce(scene.prims, ray);
+                for (const Primitive *a :
+                     {(const Primitive *)&bvh, (const Primitive *)&fast}) {
+                    std::string e = Compare(*a, ray, o);
+                    if (!e.empty() && failures++ < kMaxFailuresReported)
+                        ADD_FAILURE() << MethodName(m) << " " << ray << ": "
+                                      << e;
+                }
+            }
+        }
+    }
+}
+
+// FastBVHAccel's triangle test is Triangle's, reorganized: on a single
+// triangle it must agree with Triangle::Intersect() bit for bit, including
+// rays aimed exactly at edges and vertices (which exercise the double
+// precision fallback) and degenerate triangles.
+TEST(FastBVHAccel, TriangleTestMatchesTriangleIntersect) {
+    std::mt19937_64 rng(614);
+    Transform id;
+    int tri[3] = {0, 1, 2};
+    int disagreements = 0, hits = 0;
+    constexpr int kTriangles = 4000, kRays = 40;
+    for (int i = 0; i < kTriangles; ++i) {
+        Point3f c = RandomPoint(rng, Point3f(0, 0, 0), 10);
+        double size = std::pow(10.0, U(rng, -4, 1));
+        Point3f p[3];
+        for (Point3f &q : p) q = RandomPoint(rng, c, size);
+        if (i % 10 == 0) p[2] = p[0] + (p[1] - p[0]) * Float(U(rng, 0, 1));
+        if (i % 17 == 0) p[1] = p[0];
+        auto shapes = CreateTriangleMesh(&id, &id, false, 1, tri, 3, p,
+                                         nullptr, nullptr, nullptr);
+        auto prim = std::make_shared<GeometricPrimitive>(shapes[0]);
+        std::vector<std::shared_ptr<Primitive>> one = {prim};
+        FastBVHAccel fast(one);
+        for (int r = 0; r < kRays; ++r) {
+            // A target on the triangle, on an edge, or at a vertex.
+            Float b0 = Float(U(rng, 0, 1)), b1 = Float(U(rng, 0, 1 - b0));
+            if (r % 4 == 1) b1 = 1 - b0;
+            if (r % 4 == 2) b0 = 1, b1 = 0;
+            Point3f target = p[0] * b0 + p[1] * b1 + p[2] * (1 - b0 - b1);
+            Point3f o = RandomPoint(rng, c, 20 * size + 1);
+            Ray ray(o, target - o);
+            if (r % 5 == 0) ray.d = Normalize(ray.d);
+            if (r % 7 == 0) ray.tMax = Float(U(rng, 0.5, 1.5));
+            Float tShape;
+            SurfaceInteraction siShape, siFast;
+            bool shapeHit = shapes[0]->Intersect(ray, &tShape, &siShape);
+            Ray rf = ray;
+            bool fastHit = fast.Intersect(rf, &siFast);
+            bool ok = shapeHit == fastHit &&
+                      fast.IntersectP(ray) == shapes[0]->IntersectP(ray);
+            if (ok && shapeHit)
+                ok = rf.tMax == tShape && siFast.p == siShape.p &&
+                     siFast.pError == siShape.pError &&
+                     siFast.n == siShape.n && siFast.uv == siShape.uv &&
+                     siFast.dpdu == siShape.dpdu &&
+                     siFast.dpdv == siShape.dpdv &&
+                     siFast.shading.n == siShape.shading.n &&
+                     siFast.wo == siShape.wo &&
+                     siFast.shape == siShape.shape &&
+                     siFast.faceIndex == siShape.faceIndex &&
+                     siFast.primitive == prim.get();
+            hits += shapeHit;
+            if (!ok && disagreements++ < kMaxFailuresReported)
+                ADD_FAILURE() << "triangle " << i << " ray " << ray
+                              << ": shape " << shapeHit << " t " << tShape
+                              << ", fast " << fastHit << " t " << rf.tMax;
+        }
+    }
+    EXPECT_EQ(disagreements, 0);
+    EXPECT_GT(hits, kTriangles * kRays / 4);
+}
+
+// The fast BVH over triangles gives bit for bit the hits of BVHAccel, on a
+// closed mesh (a subdivided octahedron) and rays from all directions.
+TEST(FastBVHAccel, SameHitsAsBVHAccelOnAClosedMesh) {
+    std::vector<Point3f> p = {Point3f(1, 0, 0),  Point3f(-1, 0, 0),
+                              Point3f(0, 1, 0),  Point3f(0, -1, 0),
+                              Point3f(0, 0, 1),  Point3f(0, 0, -1)};
+    std::vector<int> idx = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
+                            2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+    for (int level = 0; level < 5; ++level) {  // 1-to-4 subdivision
+        std::vector<int> next;
+        std::map<std::pair<int, int>, int> mid;
+        auto midpoint = [&](int a, int b) {
+            auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            Vector3f m = Vector3f(p[a]) * Float(0.5) + Vector3f(p[b]) * Float(0.5);
+            p.push_back(Point3f(Normalize(m)));
+            return mid[key] = int(p.size()) - 1;
+        };
+        for (size_t t = 0; t < idx.size(); t += 3) {
+            int a = idx[t], b = idx[t + 1], c = idx[t + 2];
+            int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+            next.insert(next.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc,
+                                     ca});
+        }
+        idx = next;
+    }
+    Scene scene;
+    scene.AddTriangles(p, idx);
+    std::mt19937_64 rng(615);
+    for (SplitMethod m : kMethods) {
+        BVHAccel bvh(scene.prims, 4, m);
+        FastBVHAccel fast(scene.prims, 8, m);
+        int hits = 0;
+        for (int i = 0; i < 20000; ++i) {
+            Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 3);
+            Ray ray(o, RandomPoint(rng, Point3f(0, 0, 0), 0.5) - o);
+            if (i % 3 == 0) ray.d = RandomDirection(rng);
+            Ray r1 = ray, r2 = ray;
+            SurfaceInteraction s1, s2;
+            bool h1 = bvh.Intersect(r1, &s1), h2 = fast.Intersect(r2, &s2);
+            ASSERT_EQ(h1, h2) << ray;
+            EXPECT_EQ(bvh.IntersectP(ray), h1);
+            EXPECT_EQ(fast.IntersectP(ray), h2);
+            if (h1) {
+                ++hits;
+                EXPECT_EQ(r1.tMax, r2.tMax) << ray;
+            }
+        }
+        // Rays aimed near the origin hit, unless they start inside.
+        EXPECT_GT(hits, 10000);
+    }
+}
+
+TEST(MortonCodes, LeftShift3SpreadsTheBits) {
+    for (uint32_t x = 0; x < 1024; ++x) {
+        uint32_t expected = 0;
+        for (int i = 0; i < 10; ++i)
+            if (x & (1u << i)) expected |= 1u << (3 * i);
+        ASSERT_EQ(LeftShift3(x), expected) << x;
+    }
+    EXPECT_EQ(LeftShift3(1024), LeftShift3(1023));
+    EXPECT_EQ(LeftShift3(0xffffffffu), LeftShift3(1023));
+}
+
+TEST(MortonCodes, EncodeInterleavesCoordinates) {
+    std::mt19937_64 rng(616);
+    for (int i = 0; i < 100000; ++i) {
+        Vector3f v(Float(U(rng, 0, 1024)), Float(U(rng, 0, 1024)),
+                   Float(U(rng, 0, 1024)));
+        uint32_t q[3];
+        for (int a = 0; a < 3; ++a)
+            q[a] = std::min(uint32_t(v[a]), uint32_t(1023));
+        uint32_t expected = 0;
+        for (int bit = 0; bit < 10; ++bit)
+            for (int a = 0; a < 3; ++a)
+                if (q[a] & (1u << bit)) expected |= 1u << (3 * bit + a);
+        ASSERT_EQ(EncodeMorton3(v), expected) << v;
+    }
+    const Float nan = std::numeric_limits<Float>::quiet_NaN();
+    EXPECT_EQ(QuantizeMorton(nan), 0u);
+    EXPECT_EQ(QuantizeMorton(-3), 0u);
+    EXPECT_EQ(QuantizeMorton(1024), 1023u);
+    EXPECT_EQ(QuantizeMorton(Infinity), 1023u);
+    EXPECT_EQ(QuantizeMorton(511.9f), 511u);
+    EXPECT_EQ(EncodeMorton3(Vector3f(1024, 1024, 1024)), (1u << 30) - 1);
+}
+
+TEST(BVHHelpers, IsFiniteBoxAndCeilLog2) {
+    EXPECT_TRUE(IsFiniteBox(Bounds3f(Point3f(0, 0, 0))));
+    EXPECT_TRUE(IsFiniteBox(Bounds3f(Point3f(-1, 2, 3), Point3f(4, 5, 6))));
+    EXPECT_FALSE(IsFiniteBox(Bounds3f()));
+    Bounds3f b(Point3f(0, 0, 0), Point3f(1, 1, 1));
+    b.pMin.z = -Infinity;
+    EXPECT_FALSE(IsFiniteBox(b));
+    b.pMin.z = std::numeric_limits<Float>::quiet_NaN();
+    EXPECT_FALSE(IsFiniteBox(b));
+    for (int64_t n = 1; n < 5000; ++n) {
+        int k = CeilLog2(n);
+        EXPECT_GE(int64_t(1) << k, n);
+        if (k > 0) {
+            EXPECT_LT(int64_t(1) << (k - 1), n);
+        }
+    }
+    EXPECT_EQ(CeilLog2(0), 0);
+    EXPECT_EQ(CeilLog2(int64_t(1) << 40), 40);
+}
+
+// The SAH cost of a tree over one primitive is 1 (one test), and a
+// two-level tree's cost follows the definition of the tree cost exactly.
+TEST(BVHHelpers, StatsSAHCost) {
+    Scene scene;
+    UnitSphereAt(scene, Point3f(0, 0, 0));
+    EXPECT_DOUBLE_EQ(BVHAccel(scene.prims).Stats().sahCost, 1);
+    UnitSphereAt(scene, Point3f(4, 0, 0));
+    BVHAccel two(scene.prims, 1, SplitMethod::EqualCounts);
+    BVHStats s = two.Stats();
+    EXPECT_EQ(s.interiorNodes, 1);
+    EXPECT_EQ(s.leafNodes, 2);
+    // Root box 6 x 2 x 2 (area 56), leaves 2 x 2 x 2 (area 24).
+    EXPECT_NEAR(s.sahCost, 1 + 2 * 24.0 / 56.0, 1e-6);
+    FastBVHAccel fast(scene.prims, 1);
+    EXPECT_NEAR(fast.Stats().sahCost, 1 + 2 * 24.0 / 56.0, 1e-6);
+}

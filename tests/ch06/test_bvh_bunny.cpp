@@ -1,0 +1,220 @@
+// Chapter 6: the Stanford bunny of data/bunny.ply, subdivided in code, traced
+// by every BVH and by brute force on a subset of camera and incoherent rays.
+
+#include "lrt/lrt.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace lrt;
+using SplitMethod = BVHAccel::SplitMethod;
+
+namespace {
+
+constexpr int kCameraRays = 1600;      // a 40 x 40 image
+constexpr int kIncoherentRays = 1600;
+const Float kTieTolerance = 256 * std::numeric_limits<Float>::epsilon();
+
+// The tests run from the repository root; LRT_DATA_DIR overrides.
+std::string FindBunny() {
+    std::vector<std::string> dirs;
+    if (const char *env = std::getenv("LRT_DATA_DIR")) dirs.push_back(env);
+    for (std::string up = ""; up.size() < 16; up += "../")
+        dirs.push_back(up + "data");
+    for (const std::string &d : dirs) {
+        std::ifstream f(d + "/bunny.ply");
+        if (f) return d + "/bunny.ply";
+    }
+    return "";
+}
+
+// One round of 1-to-4 midpoint subdivision with shared edge midpoints, as
+// the benchmark's data generator does it.
+void Subdivide(PlyMesh *m) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+        auto key = std::make_pair(std::min(a, b), std::max(a, b));
+        auto it = mid.find(key);
+        if (it != mid.end()) return it->second;
+        const Point3f &p = m->p[a], &q = m->p[b];
+        m->p.push_back(Point3f(Float(0.5 * (double(p.x) + double(q.x))),
+                               Float(0.5 * (double(p.y) + double(q.y))),
+                               Float(0.5 * (double(p.z) + double(q.z)))));
+        return mid[key] = int(m->p.size()) - 1;
+    };
+    std::vector<int> out;
+    const std::vector<int> &v = m->vertexIndices;
+    for (size_t t = 0; t < v.size(); t += 3) {
+        int a = v[t], b = v[t + 1], c = v[t + 2];
+        int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+        out.insert(out.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca});
+    }
+    m->vertexIndices = out;
+}
+
+struct Bunny {
+    Transform identity;
+    std::vector<std::shared_ptr<Primitive>> prims;
+    Bounds3f bounds;
+};
+
+std::vector<Ray> MakeRays(const Bounds3f &b) {
+    std::vector<Ray> rays;
+    Point3f c = b.pMin * Float(0.5) + b.pMax * Float(0.5);
+    double r = 0.5 * b.Diagonal().Length();
+    // A pinhole camera in front of the bunny, as in the benchmark.
+    Vector3f view = Normalize(Vector3f(0.35f, 0.25f, 1));
+    Point3f eye = c + view * Float(3 * r);
+    Vector3f fwd = -view;
+    Vector3f right = Normalize(Cross(fwd, Vector3f(0, 1, 0)));
+    Vector3f up = Cross(right, fwd);
+    double tanHalf = std::tan(std::asin(0.8 / 3));
+    int res = int(std::sqrt(double(kCameraRays)));
+    for (int y = 0; y < res; ++y)
+        for (int x = 0; x < res; ++x) {
+            Float sx = Float((2 * (x + 0.5) / res - 1) * tanHalf);
+            Float sy = Float((1 - 2 * (y + 0.5) / res) * tanHalf);
+            rays.push_back(Ray(eye, Normalize(fwd + right * sx + up * sy)));
+        }
+    // Incoherent rays: from a sphere around the bunny to random points in
+    // its box.
+    std::mt19937_64 rng(621);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int i = 0; i < kIncoherentRays; ++i) {
+        double z = 1 - 2 * u(rng), phi = 2 * Pi * u(rng);
+        double s = std::sqrt(std::max(0.0, 1 - z * z));
+        Point3f o = c + Vector3f(Float(s * std::cos(phi)),
+                                 Float(s * std::sin(phi)), Float(z)) *
+                            Float(1.5 * r);
+        Point3f t(Float(b.pMin.x + u(rng) * (b.pMax.x - b.pMin.x)),
+                  Float(b.pMin.y + u(rng) * (b.pMax.y - b.pMin.y)),
+                  Float(b.pMin.z + u(rng) * (b.pMax.z - b.pMin.z)));
+        rays.push_back(Ray(o, Normalize(t - o)));
+    }
+    return rays;
+}
+
+class BunnyTest : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() {
+        std::string path = FindBunny();
+        if (path.empty()) return;
+        PlyMesh m = ReadPly(path);
+        baseTriangles = m.nTriangles();
+        Subdivide(&m);
+        bunny = new Bunny;
+        auto shapes = CreateTriangleMesh(
+            &bunny->identity, &bunny->identity, false, m.nTriangles(),
+            m.vertexIndices.data(), m.nVertices(), m.p.data(), nullptr,
+            nullptr, nullptr);
+        for (auto &s : shapes) {
+            bunny->prims.push_back(std::make_shared<GeometricPrimitive>(s));
+            bunny->bounds = Union(bunny->bounds, s->WorldBound());
+        }
+        rays = new std::vector<Ray>(MakeRays(bunny->bounds));
+        // Brute force: every triangle, each with the ray's full extent.
+        oracleT = new std::vector<Float>;
+        for (const Ray &ray : *rays) {
+            Float tMin = Infinity;
+            for (auto &p : bunny->prims) {
+                Ray r = ray;
+                SurfaceInteraction si;
+                if (p->Intersect(r, &si)) tMin = std::min(tMin, r.tMax);
+            }
+            oracleT->push_back(tMin);
+        }
+    }
+    static void TearDownTestSuite() {
+        delete bunny;
+        delete rays;
+        delete oracleT;
+    }
+    static Bunny *bunny;
+    static int baseTriangles;
+    static std::vector<Ray> *rays;
+    static std::vector<Float> *oracleT;
+
+    void Check(const Primitive &accel, const char *name) {
+        ASSERT_NE(bunny, nullptr) << "data/bunny.ply not found (set "
+                                     "LRT_DATA_DIR to the data directory)";
+        int hits = 0, oracleHits = 0, failures = 0;
+        for (size_t i = 0; i < rays->size(); ++i) {
+            Ray ray = (*rays)[i];
+            SurfaceInteraction si;
+            bool hit = accel.Intersect(ray, &si);
+            Float t = (*oracleT)[i];
+            hits += hit;
+            oracleHits += t < Infinity;
+            bool ok = hit == (t < Infinity) &&
+                      accel.IntersectP((*rays)[i]) == hit;
+            if (ok && hit) {
+                Ray r = (*rays)[i];
+                SurfaceInteraction s2;
+                // The primitive reported is hit at the distance reported,
+                // which is the closest, up to ties.
+                ok = si.primitive && si.primitive->Intersect(r, &s2) &&
+                     r.tMax == ray.tMax && ray.tMax >= t &&
+                     ray.tMax <= t * (1 + kTieTolerance);
+            }
+            if (!ok && failures++ < 10)
+                ADD_FAILURE() << name << ": ray " << i << " " << (*rays)[i]
+                              << " hit " << hit << " t " << ray.tMax
+                              << ", brute force t " << t;
+        }
+        EXPECT_EQ(failures, 0) << name;
+        EXPECT_EQ(hits, oracleHits) << name;
+        // The camera sees the bunny, and incoherent rays aimed into its
+        // box hit it about half of the time.
+        EXPECT_GT(hits, int(rays->size()) / 4) << name;
+    }
+};
+
+Bunny *BunnyTest::bunny = nullptr;
+int BunnyTest::baseTriangles = 0;
+std::vector<Ray> *BunnyTest::rays = nullptr;
+std::vector<Float> *BunnyTest::oracleT = nullptr;
+
+}  // namespace
+
+TEST_F(BunnyTest, BaseMeshIsThePackagedBunny) {
+    ASSERT_NE(bunny, nullptr) << "data/bunny.ply not found";
+    EXPECT_EQ(baseTriangles, 3674);
+    EXPECT_EQ(bunny->prims.size(), 4u * 3674u);
+}
+
+TEST_F(BunnyTest, SAH) {
+    ASSERT_NE(bunny, nullptr);
+    Check(BVHAccel(bunny->prims, 4, SplitMethod::SAH), "BVHAccel SAH");
+    Check(FastBVHAccel(bunny->prims, 8, SplitMethod::SAH), "FastBVHAccel SAH");
+}
+
+TEST_F(BunnyTest, HLBVH) {
+    ASSERT_NE(bunny, nullptr);
+    Check(BVHAccel(bunny->prims, 4, SplitMethod::HLBVH), "BVHAccel HLBVH");
+    Check(FastBVHAccel(bunny->prims, 8, SplitMethod::HLBVH),
+          "FastBVHAccel HLBVH");
+}
+
+TEST_F(BunnyTest, Middle) {
+    ASSERT_NE(bunny, nullptr);
+    Check(BVHAccel(bunny->prims, 4, SplitMethod::Middle), "BVHAccel Middle");
+    Check(FastBVHAccel(bunny->prims, 8, SplitMethod::Middle),
+          "FastBVHAccel Middle");
+}
+
+TEST_F(BunnyTest, EqualCounts) {
+    ASSERT_NE(bunny, nullptr);
+    Check(BVHAccel(bunny->prims, 4, SplitMethod::EqualCounts),
+          "BVHAccel EqualCounts");
+    Check(FastBVHAccel(bunny->prims, 8, SplitMethod::EqualCounts),
+          "FastBVHAccel EqualCounts");
+}

@@ -339,8 +339,10 @@ Bounds3f BoxOf(const FastBVHNode &n, int c) {
     return r;
 }
 
-// The same for FastBVHAccel, whose boxes are stored in the parents and
-// whose leaves put triangles, with their vertices copied, first.
+// The same for FastBVHAccel, whose boxes are stored in the parents, whose
+// nodes have two to four children (unused slots hold an empty box and an
+// empty leaf), and whose leaves put triangles, with their vertices copied,
+// first.
 void CheckStructure(const FastBVHAccel &bvh,
                     const std::vector<std::shared_ptr<Primitive>> &input) {
     const std::vector<FastBVHNode> &nodes = bvh.Nodes();
@@ -359,6 +361,7 @@ void CheckStructure(const FastBVHAccel &bvh,
     }
     std::vector<int> visited(nodes.size(), 0), covered(prims.size(), 0);
     int maxDepth = 0, leaves = 0;
+    int64_t children = 0;
     std::function<Bounds3f(FastBVHChild, int)> visit =
         [&](FastBVHChild c, int depth) -> Bounds3f {
         maxDepth = std::max(maxDepth, depth);
@@ -391,11 +394,27 @@ void CheckStructure(const FastBVHAccel &bvh,
         }
         visited[c.offset]++;
         const FastBVHNode &n = nodes[c.offset];
-        for (int k = 0; k < 2; ++k) {
+        int used = 0;
+        for (int k = 0; k < fastBVHWidth; ++k) {
+            if (n.child[k].IsEmpty()) {
+                // An unused slot: no box a ray could enter, nothing to visit.
+                EXPECT_TRUE(n.child[k].IsLeaf());
+                Bounds3f bk = BoxOf(n, k);
+                for (int a = 0; a < 3; ++a) {
+                    EXPECT_EQ(bk.pMin[a], Infinity) << "node " << c.offset;
+                    EXPECT_EQ(bk.pMax[a], -Infinity) << "node " << c.offset;
+                }
+                continue;
+            }
+            // Used slots come first.
+            EXPECT_EQ(k, used) << "node " << c.offset;
+            ++used;
             Bounds3f bk = visit(n.child[k], depth + 1);
             EXPECT_EQ(BoxOf(n, k), bk) << "node " << c.offset;
             b = Union(b, bk);
         }
+        EXPECT_GE(used, 2) << "node " << c.offset;
+        children += used;
         return b;
     };
     EXPECT_EQ(visit(bvh.Root(), 0), bvh.WorldBound());
@@ -406,7 +425,8 @@ void CheckStructure(const FastBVHAccel &bvh,
     EXPECT_LE(maxDepth, maxBVHDepth);
     EXPECT_EQ(s.interiorNodes, int64_t(nodes.size()));
     EXPECT_EQ(s.leafNodes, leaves);
-    EXPECT_EQ(2 * s.leafNodes - 1, s.TotalNodes());
+    // Every node but the root is the child of exactly one interior node.
+    EXPECT_EQ(children + 1, s.TotalNodes());
     EXPECT_EQ(s.primitives, int64_t(prims.size()));
     EXPECT_EQ(s.maxDepth, maxDepth);
 }
@@ -958,4 +978,54 @@ TEST(BVHHelpers, StatsSAHCost) {
     EXPECT_NEAR(s.sahCost, 1 + 2 * 24.0 / 56.0, 1e-6);
     FastBVHAccel fast(scene.prims, 1);
     EXPECT_NEAR(fast.Stats().sahCost, 1 + 2 * 24.0 / 56.0, 1e-6);
+}
+
+// FastBVHAccel's nodes have four slots, and the unused ones hold an empty
+// box. A ray that is NaN on every axis passes every box test (a NaN never
+// rejects, Section 5.4), also the empty boxes, so for such rays the
+// traversal visits the unused slots too; they must be empty leaves, not
+// references to node 0, or the traversal would never end. Rays NaN on some
+// axes and rays with infinite components must give BVHAccel's answers.
+TEST(FastBVHAccel, RaysWithNaNAndInfinityEndAndAgreeWithBVHAccel) {
+    std::mt19937_64 rng(616);
+    Scene scene;
+    for (int i = 0; i < 300; ++i) {
+        Point3f a = RandomPoint(rng, Point3f(0, 0, 0), 2);
+        scene.AddTriangles({a, a + RandomDirection(rng) * Float(0.3),
+                            a + RandomDirection(rng) * Float(0.3)},
+                           {0, 1, 2});
+    }
+    const Float nan = std::numeric_limits<Float>::quiet_NaN();
+    const Float inf = Infinity;
+    std::vector<Ray> rays;
+    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(nan, nan, nan)));
+    rays.push_back(Ray(Point3f(0, 0, 0), Vector3f(nan, nan, nan)));
+    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(0, 0, 1)));
+    rays.push_back(Ray(Point3f(-5, 0, 0), Vector3f(1, nan, 0)));
+    rays.push_back(Ray(Point3f(-5, 0.1f, 0.2f), Vector3f(inf, 0, 0)));
+    rays.push_back(Ray(Point3f(-inf, 0, 0), Vector3f(1, 0, 0)));
+    for (int i = 0; i < 200; ++i) {
+        Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 4);
+        Vector3f d = RandomDirection(rng);
+        int axis = i % 3;
+        if (i % 2) d[axis] = nan;
+        else o[axis] = nan;
+        rays.push_back(Ray(o, d));
+    }
+    for (SplitMethod m : kMethods) {
+        BVHAccel bvh(scene.prims, 4, m);
+        FastBVHAccel fast(scene.prims, 8, m);
+        for (const Ray &ray : rays) {
+            Ray r1 = ray, r2 = ray;
+            SurfaceInteraction s1, s2;
+            bool h1 = bvh.Intersect(r1, &s1), h2 = fast.Intersect(r2, &s2);
+            EXPECT_EQ(h1, h2) << ray;
+            EXPECT_EQ(bvh.IntersectP(ray), fast.IntersectP(ray)) << ray;
+            if (h1 && h2) {
+                EXPECT_TRUE(r1.tMax == r2.tMax ||
+                            (std::isnan(r1.tMax) && std::isnan(r2.tMax)))
+                    << ray;
+            }
+        }
+    }
 }

@@ -58,6 +58,11 @@ struct FastBox {
     }
 };
 // FastBVHAccel Local Declarations
+struct FastBVHBuildNode {
+    FastBox box[2];
+    FastBVHChild child[2];
+};
+// FastBVHAccel Local Declarations
 constexpr int fastBVHBins = 16;
 constexpr Float fastBVHTraversalCost = 1;
 constexpr Float fastBVHIntersectionCost = 1;
@@ -75,12 +80,14 @@ struct FastRay {
         ix = 1 / ray.d.x;
         iy = 1 / ray.d.y;
         iz = 1 / ray.d.z;
-        nx = ix < 0;
-        ny = iy < 0;
-        nz = iz < 0;
-        fx = 1 - nx;
-        fy = 1 - ny;
-        fz = 1 - nz;
+        // Compute the offsets of the near and far planes in a node
+        const int w = fastBVHWidth;
+        nearX = (ix < 0) * w;
+        nearY = (2 + (iy < 0)) * w;
+        nearZ = (4 + (iz < 0)) * w;
+        farX = (ix >= 0) * w;
+        farY = (2 + (iy >= 0)) * w;
+        farZ = (4 + (iz >= 0)) * w;
         o[0] = ox;
         o[1] = oy;
         o[2] = oz;
@@ -96,7 +103,7 @@ struct FastRay {
         Sz = 1 / d.z;
     }
     Float ox, oy, oz, ix, iy, iz;
-    int nx, ny, nz, fx, fy, fz;
+    int nearX, nearY, nearZ, farX, farY, farZ;
     Float o[3];
     int kx, ky, kz;
     Float Sx, Sy, Sz;
@@ -105,6 +112,9 @@ struct FastRay {
 struct FastTriangleHit {
     Float t, e0, e1, e2, invDet;
 };
+// FastBVHAccel Local Declarations
+constexpr int8_t lowestSetBit[16] = {0, 0, 1, 0, 2, 0, 1, 0,
+                                     3, 0, 1, 0, 2, 0, 1, 0};
 // FastBVHAccel Utility Functions
 static void SetChildBox(FastBVHNode *node, int c, const Float lo[3],
                         const Float hi[3]) {
@@ -112,12 +122,6 @@ static void SetChildBox(FastBVHNode *node, int c, const Float lo[3],
         node->bounds[a][0][c] = lo[a];
         node->bounds[a][1][c] = hi[a];
     }
-}
-
-static void SetChildBox(FastBVHNode *node, int c, const Bounds3f &b) {
-    Float lo[3] = {b.pMin.x, b.pMin.y, b.pMin.z};
-    Float hi[3] = {b.pMax.x, b.pMax.y, b.pMax.z};
-    SetChildBox(node, c, lo, hi);
 }
 
 static Bounds3f GetChildBox(const FastBVHNode &node, int c) {
@@ -151,6 +155,20 @@ static inline int BinIndex(Float c, Float cMin, Float scale, int nBins) {
     if (!(f > 0)) return 0;
     if (f >= nBins) return nBins - 1;
     return int(f);
+}
+// FastBVHAccel Utility Functions
+static FastBox ToFastBox(const Bounds3f &b) {
+    return {{b.pMin.x, b.pMin.y, b.pMin.z}, {b.pMax.x, b.pMax.y, b.pMax.z}};
+}
+
+static FastBVHNode EmptyNode() {
+    FastBVHNode node;
+    FastBox empty = FastBox::Empty();
+    for (int c = 0; c < fastBVHWidth; ++c) {
+        SetChildBox(&node, c, empty.lo, empty.hi);
+        node.child[c] = {0, 0, 0};
+    }
+    return node;
 }
 // FastBVHAccel Utility Functions
 static inline bool IntersectTriangle(const FastTriangle &tri,
@@ -223,87 +241,116 @@ static inline bool IntersectTriangle(const FastTriangle &tri,
 }
 // FastBVHAccel Traversal Function
 template <typename LeafVisitor>
-static void TraverseFastBVH(const std::vector<FastBVHNode> &nodes,
-                            const std::vector<FastTriangle> &triangles,
+static void TraverseFastBVH(const FastBVHNode *nodes,
+                            const FastTriangle *triangles,
                             FastBVHChild root, const FastBVHNode &rootNode,
                             const Ray &ray, const FastRay &fr,
                             LeafVisitor visitLeaf) {
     const FastRay r = fr;
     {
         const FastBVHNode &node = rootNode;
-        // Intersect the ray with both child boxes of node
-        Float t[2];
-        bool hit[2];
+        // Intersect the ray with the child boxes of node
+        Float t[fastBVHWidth];
+        unsigned mask = 0;
         {
-            const Float(*b)[2][2] = node.bounds;
-            Float t0[2], t1[2];
-            for (int c = 0; c < 2; ++c) {
-                Float tx0 = (b[0][r.nx][c] - r.ox) * r.ix;
-                Float tx1 = (b[0][r.fx][c] - r.ox) * r.ix;
-                Float ty0 = (b[1][r.ny][c] - r.oy) * r.iy;
-                Float ty1 = (b[1][r.fy][c] - r.oy) * r.iy;
-                Float tz0 = (b[2][r.nz][c] - r.oz) * r.iz;
-                Float tz1 = (b[2][r.fz][c] - r.oz) * r.iz;
-                t0[c] = std::max(std::max(std::max(Float(0), tx0), ty0), tz0);
-                t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1);
+            const Float *b = &node.bounds[0][0][0];
+            Float t1[fastBVHWidth];
+            for (int c = 0; c < fastBVHWidth; ++c) {
+                Float tx0 = (b[r.nearX + c] - r.ox) * r.ix;
+                Float tx1 = (b[r.farX + c] - r.ox) * r.ix;
+                Float ty0 = (b[r.nearY + c] - r.oy) * r.iy;
+                Float ty1 = (b[r.farY + c] - r.oy) * r.iy;
+                Float tz0 = (b[r.nearZ + c] - r.oz) * r.iz;
+                Float tz1 = (b[r.farZ + c] - r.oz) * r.iz;
+                t[c] = std::max(std::max(std::max(Float(0), tx0), ty0), tz0);
+                t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1) *
+                        (1 + 2 * gamma(3));
             }
-            for (int c = 0; c < 2; ++c) {
-                t[c] = t0[c];
-                hit[c] = !(t0[c] > t1[c] * (1 + 2 * gamma(3)));
-            }
+            int hit[fastBVHWidth];
+            for (int c = 0; c < fastBVHWidth; ++c) hit[c] = !(t[c] > t1[c]);
+            static_assert(fastBVHWidth == 4, "the mask is built for four children");
+            mask = unsigned(hit[0] | hit[1] << 1 | hit[2] << 2 | hit[3] << 3);
         }
         (void)t;
-        if (!hit[0]) return;
+        if (!(mask & 1)) return;
     }
     struct StackEntry {
         FastBVHChild child;
         Float tEntry;
     };
-    StackEntry stack[maxBVHDepth];
+    StackEntry stack[(fastBVHWidth - 1) * maxBVHDepth + fastBVHWidth];
     int stackSize = 0;
     FastBVHChild current = root;
     while (true) {
         if (!current.IsLeaf()) {
-            // Test both children's boxes and descend into the nearer one
+            // Test the children's boxes and descend into the nearest
             const FastBVHNode &node = nodes[current.offset];
-            // Intersect the ray with both child boxes of node
-            Float t[2];
-            bool hit[2];
+            // Intersect the ray with the child boxes of node
+            Float t[fastBVHWidth];
+            unsigned mask = 0;
             {
-                const Float(*b)[2][2] = node.bounds;
-                Float t0[2], t1[2];
-                for (int c = 0; c < 2; ++c) {
-                    Float tx0 = (b[0][r.nx][c] - r.ox) * r.ix;
-                    Float tx1 = (b[0][r.fx][c] - r.ox) * r.ix;
-                    Float ty0 = (b[1][r.ny][c] - r.oy) * r.iy;
-                    Float ty1 = (b[1][r.fy][c] - r.oy) * r.iy;
-                    Float tz0 = (b[2][r.nz][c] - r.oz) * r.iz;
-                    Float tz1 = (b[2][r.fz][c] - r.oz) * r.iz;
-                    t0[c] = std::max(std::max(std::max(Float(0), tx0), ty0), tz0);
-                    t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1);
+                const Float *b = &node.bounds[0][0][0];
+                Float t1[fastBVHWidth];
+                for (int c = 0; c < fastBVHWidth; ++c) {
+                    Float tx0 = (b[r.nearX + c] - r.ox) * r.ix;
+                    Float tx1 = (b[r.farX + c] - r.ox) * r.ix;
+                    Float ty0 = (b[r.nearY + c] - r.oy) * r.iy;
+                    Float ty1 = (b[r.farY + c] - r.oy) * r.iy;
+                    Float tz0 = (b[r.nearZ + c] - r.oz) * r.iz;
+                    Float tz1 = (b[r.farZ + c] - r.oz) * r.iz;
+                    t[c] = std::max(std::max(std::max(Float(0), tx0), ty0), tz0);
+                    t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1) *
+                            (1 + 2 * gamma(3));
                 }
-                for (int c = 0; c < 2; ++c) {
-                    t[c] = t0[c];
-                    hit[c] = !(t0[c] > t1[c] * (1 + 2 * gamma(3)));
+                int hit[fastBVHWidth];
+                for (int c = 0; c < fastBVHWidth; ++c) hit[c] = !(t[c] > t1[c]);
+                static_assert(fastBVHWidth == 4, "the mask is built for four children");
+                mask = unsigned(hit[0] | hit[1] << 1 | hit[2] << 2 | hit[3] << 3);
+            }
+            if (mask != 0) {
+                int c = lowestSetBit[mask];
+                mask &= mask - 1;
+                if (mask == 0) {
+                    current = node.child[c];
+                    continue;
                 }
-            }
-            bool hit0 = hit[0], hit1 = hit[1];
-            Float t0 = t[0], t1 = t[1];
-            if (hit0 && hit1) {
-                bool second = t1 < t0;
-                const FastBVHChild &other = node.child[!second];
-                stack[stackSize].child = other;
-                stack[stackSize].tEntry = std::max(t0, t1);
-                ++stackSize;
-                // Prefetch the data of the other child
-                const void *otherData = &nodes[other.offset];
-                if (other.IsLeaf()) otherData = &triangles[other.offset];
-                LRT_PREFETCH(otherData);
-                current = node.child[second];
-                continue;
-            }
-            if (hit0 || hit1) {
-                current = node.child[hit1];
+                int d = lowestSetBit[mask];
+                mask &= mask - 1;
+                if (mask == 0) {
+                    // Push the farther of children c and d, descend into the nearer
+                    if (t[d] < t[c]) std::swap(c, d);
+                    stack[stackSize++] = {node.child[d], t[d]};
+                    // Prefetch the data of the next child on the stack
+                    const FastBVHChild &next = stack[stackSize - 1].child;
+                    const void *nextData = &nodes[next.offset];
+                    if (next.IsLeaf()) nextData = &triangles[next.offset];
+                    LRT_PREFETCH(nextData);
+                    current = node.child[c];
+                    continue;
+                }
+                // Push three or four children, sort them, descend into the nearest
+                int first = stackSize;
+                stack[stackSize++] = {node.child[c], t[c]};
+                stack[stackSize++] = {node.child[d], t[d]};
+                do {
+                    int e = lowestSetBit[mask];
+                    mask &= mask - 1;
+                    stack[stackSize++] = {node.child[e], t[e]};
+                } while (mask != 0);
+                // Sort the pushed children, the nearest on top
+                for (int i = first + 1; i < stackSize; ++i) {
+                    StackEntry e = stack[i];
+                    int j = i;
+                    for (; j > first && stack[j - 1].tEntry < e.tEntry; --j)
+                        stack[j] = stack[j - 1];
+                    stack[j] = e;
+                }
+                current = stack[--stackSize].child;
+                // Prefetch the data of the next child on the stack
+                const FastBVHChild &next = stack[stackSize - 1].child;
+                const void *nextData = &nodes[next.offset];
+                if (next.IsLeaf()) nextData = &triangles[next.offset];
+                LRT_PREFETCH(nextData);
                 continue;
             }
         } else if (visitLeaf(current))
@@ -349,11 +396,11 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
     }
     if (prims.empty()) return;
     // Build the tree with the binned SAH
-    nodes.reserve(prims.size() / 2 + 1);
-    SetChildBox(&rootNode, 0, box.lo, box.hi);
-    SetChildBox(&rootNode, 1, FastBox::Empty().lo, FastBox::Empty().hi);
-    root = BuildSAH(prims, 0, int(prims.size()), box, 0);
-    nodes.shrink_to_fit();
+    std::vector<FastBVHBuildNode> tree;
+    tree.reserve(prims.size() / 2 + 1);
+    FastBVHChild binaryRoot = BuildSAH(prims, 0, int(prims.size()), box, 0,
+                                       &tree);
+    SetRoot(box, CollapseTree(tree, binaryRoot));
     // Store the primitives and their triangles in leaf order
     primitives.resize(prims.size());
     refs.resize(prims.size());
@@ -368,7 +415,8 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
 // FastBVHAccel Method Definitions
 FastBVHChild FastBVHAccel::BuildSAH(std::vector<FastBVHBuildPrim> &prims,
                                     int start, int end, const FastBox &box,
-                                    int depth) {
+                                    int depth,
+                                    std::vector<FastBVHBuildNode> *tree) {
     int n = end - start;
     if (n == 1) return MakeLeaf(prims, start, end);
     int dim = box.MaximumExtent();
@@ -446,17 +494,13 @@ FastBVHChild FastBVHAccel::BuildSAH(std::vector<FastBVHBuildPrim> &prims,
         for (int i = start; i < end; ++i)
             childBox[i < mid ? 0 : 1].Grow(prims[i].lo, prims[i].hi);
     }
-    // Create an interior FastBVHNode and build its children
-    int nodeIndex = int(nodes.size());
-    nodes.emplace_back();
-    for (int c = 0; c < 2; ++c)
-        SetChildBox(&nodes[nodeIndex], c, childBox[c].lo, childBox[c].hi);
-    FastBVHChild c0 = BuildSAH(prims, start, mid, childBox[0], depth + 1);
-    FastBVHChild c1 = BuildSAH(prims, mid, end, childBox[1], depth + 1);
-    nodes[nodeIndex].child[0] = c0;
-    nodes[nodeIndex].child[1] = c1;
-    FastBVHChild interior = {uint32_t(nodeIndex), 0, 0};
-    return interior;
+    // Create an interior build node and build its children
+    int nodeIndex = int(tree->size());
+    tree->emplace_back();
+    FastBVHChild c0 = BuildSAH(prims, start, mid, childBox[0], depth + 1, tree);
+    FastBVHChild c1 = BuildSAH(prims, mid, end, childBox[1], depth + 1, tree);
+    (*tree)[nodeIndex] = {{childBox[0], childBox[1]}, {c0, c1}};
+    return {uint32_t(nodeIndex), fastBVHInterior, 0};
 }
 // FastBVHAccel Method Definitions
 FastBVHChild FastBVHAccel::MakeLeaf(std::vector<FastBVHBuildPrim> &prims,
@@ -481,13 +525,14 @@ void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
     primitives.reserve(n);
     refs.reserve(n);
     triangles.reserve(n);
-    nodes.reserve(bvh.Nodes().size() / 2);
-    SetChildBox(&rootNode, 0, bvh.Nodes()[0].bounds);
-    SetChildBox(&rootNode, 1, Bounds3f());
-    root = CopySubtree(bvh, 0);
+    std::vector<FastBVHBuildNode> tree;
+    tree.reserve(bvh.Nodes().size() / 2);
+    FastBVHChild binaryRoot = CopySubtree(bvh, 0, &tree);
+    SetRoot(ToFastBox(bvh.Nodes()[0].bounds), CollapseTree(tree, binaryRoot));
 }
 // FastBVHAccel Method Definitions
-FastBVHChild FastBVHAccel::CopySubtree(const BVHAccel &bvh, int index) {
+FastBVHChild FastBVHAccel::CopySubtree(const BVHAccel &bvh, int index,
+                                       std::vector<FastBVHBuildNode> *tree) {
     const LinearBVHNode &node = bvh.Nodes()[index];
     if (node.nPrimitives > 0) {
         // Append the primitives of a BVHAccel leaf, triangles first
@@ -510,17 +555,57 @@ FastBVHChild FastBVHAccel::CopySubtree(const BVHAccel &bvh, int index) {
             }
         return leaf;
     }
-    int nodeIndex = int(nodes.size());
-    nodes.emplace_back();
+    int nodeIndex = int(tree->size());
+    tree->emplace_back();
     int children[2] = {index + 1, node.secondChildOffset};
-    for (int c = 0; c < 2; ++c)
-        SetChildBox(&nodes[nodeIndex], c, bvh.Nodes()[children[c]].bounds);
-    FastBVHChild c0 = CopySubtree(bvh, children[0]);
-    FastBVHChild c1 = CopySubtree(bvh, children[1]);
-    nodes[nodeIndex].child[0] = c0;
-    nodes[nodeIndex].child[1] = c1;
-    FastBVHChild interior = {uint32_t(nodeIndex), 0, 0};
-    return interior;
+    FastBVHChild c0 = CopySubtree(bvh, children[0], tree);
+    FastBVHChild c1 = CopySubtree(bvh, children[1], tree);
+    (*tree)[nodeIndex] = {{ToFastBox(bvh.Nodes()[children[0]].bounds),
+                           ToFastBox(bvh.Nodes()[children[1]].bounds)},
+                          {c0, c1}};
+    return {uint32_t(nodeIndex), fastBVHInterior, 0};
+}
+// FastBVHAccel Method Definitions
+FastBVHChild FastBVHAccel::CollapseTree(
+    const std::vector<FastBVHBuildNode> &tree, FastBVHChild c) {
+    if (c.IsLeaf()) return c;
+    // Gather up to four children by opening the largest interior ones
+    const FastBVHBuildNode &binary = tree[c.offset];
+    FastBVHChild child[fastBVHWidth] = {binary.child[0], binary.child[1]};
+    FastBox box[fastBVHWidth] = {binary.box[0], binary.box[1]};
+    int n = 2;
+    while (n < fastBVHWidth) {
+        int open = -1;
+        Float largest = -1;
+        for (int k = 0; k < n; ++k)
+            if (!child[k].IsLeaf() && box[k].HalfArea() > largest) {
+                largest = box[k].HalfArea();
+                open = k;
+            }
+        if (open < 0) break;
+        const FastBVHBuildNode &opened = tree[child[open].offset];
+        child[open] = opened.child[0];
+        box[open] = opened.box[0];
+        child[n] = opened.child[1];
+        box[n] = opened.box[1];
+        ++n;
+    }
+    int nodeIndex = int(nodes.size());
+    nodes.push_back(EmptyNode());
+    for (int k = 0; k < n; ++k)
+        SetChildBox(&nodes[nodeIndex], k, box[k].lo, box[k].hi);
+    for (int k = 0; k < n; ++k) {
+        FastBVHChild collapsed = CollapseTree(tree, child[k]);
+        nodes[nodeIndex].child[k] = collapsed;
+    }
+    return {uint32_t(nodeIndex), fastBVHInterior, 0};
+}
+// FastBVHAccel Method Definitions
+void FastBVHAccel::SetRoot(const FastBox &box, FastBVHChild child) {
+    rootNode = EmptyNode();
+    SetChildBox(&rootNode, 0, box.lo, box.hi);
+    root = child;
+    nodes.shrink_to_fit();
 }
 // FastBVHAccel Method Definitions
 bool FastBVHAccel::Intersect(const Ray &ray,
@@ -530,12 +615,13 @@ bool FastBVHAccel::Intersect(const Ray &ray,
     int64_t hitTriangle = -1;
     FastTriangleHit closest = {0, 0, 0, 0, 0};
     bool hitOther = false;
-    TraverseFastBVH(nodes, triangles, root, rootNode, ray, fr,
+    const FastTriangle *tris = triangles.data();
+    TraverseFastBVH(nodes.data(), tris, root, rootNode, ray, fr,
                     [&](const FastBVHChild &leaf) {
         // Find the closest hit among a fast leaf's primitives
         for (int i = 0; i < leaf.nTriangles; ++i) {
             FastTriangleHit hit;
-            if (IntersectTriangle(triangles[leaf.offset + i], fr, ray, &hit)) {
+            if (IntersectTriangle(tris[leaf.offset + i], fr, ray, &hit)) {
                 ray.tMax = hit.t;
                 closest = hit;
                 hitTriangle = leaf.offset + i;
@@ -572,11 +658,12 @@ bool FastBVHAccel::IntersectP(const Ray &ray) const {
     if (refs.empty()) return false;
     FastRay fr(ray);
     bool hit = false;
-    TraverseFastBVH(nodes, triangles, root, rootNode, ray, fr,
+    const FastTriangle *tris = triangles.data();
+    TraverseFastBVH(nodes.data(), tris, root, rootNode, ray, fr,
                     [&](const FastBVHChild &leaf) {
         for (int i = 0; i < leaf.nTriangles; ++i) {
             FastTriangleHit h;
-            if (IntersectTriangle(triangles[leaf.offset + i], fr, ray, &h))
+            if (IntersectTriangle(tris[leaf.offset + i], fr, ray, &h))
                 return hit = true;
         }
         for (int i = 0; i < leaf.nOthers; ++i) {
@@ -618,9 +705,11 @@ BVHStats FastBVHAccel::Stats() const {
             s.interiorNodes++;
             s.sahCost += p;
             const FastBVHNode &node = nodes[item.child.offset];
-            for (int c = 0; c < 2; ++c)
-                todo.push_back({node.child[c], BoxArea(GetChildBox(node, c)),
-                                item.depth + 1});
+            for (int c = 0; c < fastBVHWidth; ++c)
+                if (!node.child[c].IsEmpty())
+                    todo.push_back({node.child[c],
+                                    BoxArea(GetChildBox(node, c)),
+                                    item.depth + 1});
         }
     }
     return s;

@@ -14,21 +14,26 @@
 namespace lrt {
 
 struct FastBVHBuildPrim;
+struct FastBVHBuildNode;
 struct FastBox;
 // FastBVHAccel Node Types
+constexpr int fastBVHWidth = 4;
+constexpr uint16_t fastBVHInterior = 0xffff;
+
 struct FastBVHChild {
     uint32_t offset;
     uint16_t nTriangles, nOthers;
-    bool IsLeaf() const { return nTriangles + nOthers > 0; }
-    int NPrimitives() const { return nTriangles + nOthers; }
+    bool IsLeaf() const { return nTriangles != fastBVHInterior; }
+    bool IsEmpty() const { return nTriangles == 0 && nOthers == 0; }
+    int NPrimitives() const { return IsLeaf() ? nTriangles + nOthers : 0; }
 };
 
 struct alignas(64) FastBVHNode {
-    Float bounds[3][2][2];
-    FastBVHChild child[2];
+    Float bounds[3][2][fastBVHWidth];
+    FastBVHChild child[fastBVHWidth];
 };
-static_assert(sizeof(FastBVHNode) == (sizeof(Float) == 4 ? 64 : 128),
-              "FastBVHNode should fill one cache line");
+static_assert(sizeof(FastBVHNode) == (sizeof(Float) == 4 ? 128 : 256),
+              "FastBVHNode should fill two cache lines");
 // FastBVHAccel Node Types
 struct FastTriangle {
     Float v[3][3];
@@ -62,12 +67,18 @@ class FastBVHAccel : public Aggregate {
   private:
     // FastBVHAccel Private Methods
     FastBVHChild BuildSAH(std::vector<FastBVHBuildPrim> &prims, int start,
-                          int end, const FastBox &box, int depth);
+                          int end, const FastBox &box, int depth,
+                          std::vector<FastBVHBuildNode> *tree);
     FastBVHChild MakeLeaf(std::vector<FastBVHBuildPrim> &prims, int start,
                           int end) const;
     // FastBVHAccel Private Methods
     void CopyTree(const BVHAccel &bvh);
-    FastBVHChild CopySubtree(const BVHAccel &bvh, int index);
+    FastBVHChild CopySubtree(const BVHAccel &bvh, int index,
+                             std::vector<FastBVHBuildNode> *tree);
+    // FastBVHAccel Private Methods
+    FastBVHChild CollapseTree(const std::vector<FastBVHBuildNode> &tree,
+                              FastBVHChild c);
+    void SetRoot(const FastBox &box, FastBVHChild child);
     // FastBVHAccel Private Data
     int maxPrimsInNode;
     std::vector<std::shared_ptr<Primitive>> primitives;

@@ -10,6 +10,8 @@
 #   make tangle     refresh tangled/, the readable tangle that is committed
 #   make lint       check the chapters' noweb/Markdown format
 #   make bench      chapter 6's BVH benchmark (tools/bench.mk): table + JSON
+#   make figures    render the book's figures into figures/ (tools/figures.mk);
+#                   make check-figures compares them with the committed ones
 #   make exercises  student and solution kits; more in tools/exercises.mk
 #   make grade SUBMISSION=path [OUT=dir]  grade a student's chapters (tools/grade.mk)
 #
@@ -74,4 +76,5 @@ clean:
 
 include tools/exercises.mk
 include tools/bench.mk
+include tools/figures.mk
 include tools/grade.mk

@@ -25,6 +25,12 @@ need texlive-fonts-recommended have_sty pcrr8t.tfm
 need texlive-latex-extra       have_sty framed.sty
 need texlive-pictures          have_sty tikz.sty
 need lmodern                   have_sty lmodern.sty
+need libstb-dev    test -f /usr/include/stb/stb_image_write.h
+# tools/deps.sh figures: also what make figures needs (the book uses the
+# committed figures and does not).
+if [ "${1:-}" = figures ]; then
+    need gnuplot-nox command -v gnuplot
+fi
 
 [ ${#missing[@]} -eq 0 ] && exit 0
 packages=$(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')
@@ -36,7 +42,7 @@ if [ "$(id -u)" -eq 0 ]; then
     apt-get install -y -qq --no-install-recommends $packages
     # Check again: a package that installed but did not bring what we test for
     # must stop the build here, not in the middle of a LaTeX run.
-    [ -z "${LRT_DEPS_RECHECK:-}" ] && LRT_DEPS_RECHECK=1 exec "$0"
+    [ -z "${LRT_DEPS_RECHECK:-}" ] && LRT_DEPS_RECHECK=1 exec "$0" "$@"
     echo "deps: still missing after installing: $packages" >&2
     exit 1
 else

@@ -22,3 +22,8 @@
 #include "lrt/accelerators/bvh.h"
 // lrt.h includes
 #include "lrt/accelerators/fastbvh.h"
+// lrt.h includes
+#include "lrt/render/image.h"
+#include "lrt/render/camera.h"
+#include "lrt/render/renderer.h"
+#include "lrt/render/bvhvisits.h"

@@ -7,6 +7,11 @@
 // the profile of each shape and its derivatives, nothing of the algebra that
 // turns the integral into a closed form. The integrator itself is checked on
 // polynomials and on a torus, whose area follows from Pappus's theorem.
+//
+// The tests that call Area() are public tests of the chapter's exercises
+// (suites Ex4_9_* for the sphere, Ex4_10_* for the disk); the tests of the
+// integrator and of its power to reject wrong formulas call no Area() and
+// belong to no exercise.
 
 #include "lrt/lrt.h"
 
@@ -300,7 +305,7 @@ TEST(AreaQuadrature, ProfileDerivativesMatchFiniteDifferences) {
         }
 }
 
-TEST(AreaQuadrature, SphereMatchesGraphProfileIntegral) {
+TEST(Ex4_9_SphereQuadrature, MatchesGraphProfileIntegral) {
     ShapeSampler sampler(0x5eed0401);
     Transform identity;
     for (int i = 0; i < kQuadratureCases; ++i) {
@@ -315,7 +320,7 @@ TEST(AreaQuadrature, SphereMatchesGraphProfileIntegral) {
     }
 }
 
-TEST(AreaQuadrature, SphereMatchesPolarProfileIntegral) {
+TEST(Ex4_9_SphereQuadrature, MatchesPolarProfileIntegral) {
     ShapeSampler sampler(0x5eed0402);
     Transform identity;
     for (int i = 0; i < kQuadratureCases; ++i) {
@@ -330,7 +335,7 @@ TEST(AreaQuadrature, SphereMatchesPolarProfileIntegral) {
     }
 }
 
-TEST(AreaQuadrature, DiskMatchesProfileIntegral) {
+TEST(Ex4_10_DiskQuadrature, MatchesProfileIntegral) {
     ShapeSampler sampler(0x5eed0403);
     Transform identity;
     for (int i = 0; i < kQuadratureCases; ++i) {

@@ -4,6 +4,9 @@
 // has; the bounds are those stated in the chapter (gamma_3 for spheres,
 // gamma_4 for disks, about one unit in the last place for Float = float
 // triangles, a multiple of epsilon / sin(theta) for Float = double).
+//
+// All of them are public tests of the chapter's exercises: Ex4_9_* for the
+// sphere, Ex4_10_* for the disk, Ex4_11_* for the triangle.
 
 #include "lrt/lrt.h"
 
@@ -105,7 +108,7 @@ OneTriangle MakeTriangle(const Transform *toWorld, const Transform *toObject,
 
 // The constructor orders and clamps the heights; Area() reports the surface
 // that is actually stored, through the Shape interface.
-TEST(SphereArea, ClampedAndSwappedHeights) {
+TEST(Ex4_9_SphereRounding, ClampedAndSwappedHeights) {
     Transform identity;
     const Float r = 1.5f;
     Sphere whole(&identity, &identity, false, r, 5, -5, 400);
@@ -120,11 +123,15 @@ TEST(SphereArea, ClampedAndSwappedHeights) {
 // Area() is measured in object space (as in pbrt): it does not change with
 // the transformation. (The Cauchy-Crofton test shows the world-space area
 // of a scaled sphere.)
-TEST(SphereArea, IsObjectSpace) {
+TEST(Ex4_9_SphereRounding, IsObjectSpace) {
     Transform identity, scale = Scale(2, 3, 4), inv = Inverse(scale);
     Sphere s0(&identity, &identity, false, 1, -0.5f, 1, 300);
     Sphere s1(&scale, &inv, false, 1, -0.5f, 1, 300);
     EXPECT_EQ(s0.Area(), s1.Area());
+}
+
+TEST(Ex4_10_DiskRounding, IsObjectSpace) {
+    Transform identity, scale = Scale(2, 3, 4), inv = Inverse(scale);
     Disk d0(&identity, &identity, false, 0, 1, 0.5f, 300);
     Disk d1(&scale, &inv, false, 0, 1, 0.5f, 300);
     EXPECT_EQ(d0.Area(), d1.Area());
@@ -132,7 +139,7 @@ TEST(SphereArea, IsObjectSpace) {
 
 // phiMax = 360 degrees is stored as exactly 2 * Pi, so the exact area of the
 // stored sphere is 2 Pi r (zMax - zMin) with the Float value of Pi.
-TEST(SphereArea, WithinGamma3OfStoredBand) {
+TEST(Ex4_9_SphereRounding, WithinGamma3OfStoredBand) {
     Transform identity;
     std::mt19937_64 rng(0x5eed0461);
     std::uniform_real_distribution<double> U(0, 1);
@@ -151,7 +158,7 @@ TEST(SphereArea, WithinGamma3OfStoredBand) {
     }
 }
 
-TEST(DiskArea, WithinGamma4OfStoredRing) {
+TEST(Ex4_10_DiskRounding, WithinGamma4OfStoredRing) {
     Transform identity;
     std::mt19937_64 rng(0x5eed0462);
     std::uniform_real_distribution<double> U(0, 1);
@@ -169,7 +176,7 @@ TEST(DiskArea, WithinGamma4OfStoredRing) {
 // Rings whose width is a few units in the last place of their radius: the
 // factored formula keeps its gamma_4 bound, while r^2 - ri^2 evaluated in
 // Float would be off by far more.
-TEST(DiskArea, ThinRingsAreAccurate) {
+TEST(Ex4_10_DiskRounding, ThinRingsAreAccurate) {
     Transform identity;
     bool naiveFails = false;
     for (Float r : {Float(1), Float(0.7), Float(3.3), Float(1e5)}) {
@@ -190,7 +197,7 @@ TEST(DiskArea, ThinRingsAreAccurate) {
 
 // Well-shaped triangles under random affine transformations: Area() is the
 // area of the stored world-space triangle, by Kahan's Heron formula.
-TEST(TriangleArea, MatchesHeronOfWorldSpaceVertices) {
+TEST(Ex4_11_TriangleRounding, MatchesHeronOfWorldSpaceVertices) {
     std::mt19937_64 rng(0x5eed0463);
     std::uniform_real_distribution<double> U(-1, 1);
     int tested = 0;
@@ -225,7 +232,7 @@ TEST(TriangleArea, MatchesHeronOfWorldSpaceVertices) {
 // Needles: the angle at the first vertex has a sine between 1e-5 and 1e-2.
 // Area() must stay within the bound; a Float = float computation of the
 // edges (as in pbrt-v3) would not.
-TEST(TriangleArea, NeedleTriangles) {
+TEST(Ex4_11_TriangleRounding, NeedleTriangles) {
     std::mt19937_64 rng(0x5eed0464);
     std::uniform_real_distribution<double> U(0, 1);
     Transform identity;
@@ -258,7 +265,7 @@ TEST(TriangleArea, NeedleTriangles) {
     }
 }
 
-TEST(TriangleArea, DegenerateTrianglesHaveZeroArea) {
+TEST(Ex4_11_TriangleRounding, DegenerateTrianglesHaveZeroArea) {
     Transform identity;
     std::vector<std::vector<Point3f>> cases = {
         {Point3f(1, 2, 3), Point3f(1, 2, 3), Point3f(-4, 5, 0.5f)},
@@ -275,7 +282,7 @@ TEST(TriangleArea, DegenerateTrianglesHaveZeroArea) {
 
 // The area does not depend on which vertex the edges start from, up to the
 // rounding bound.
-TEST(TriangleArea, IndependentOfVertexOrder) {
+TEST(Ex4_11_TriangleRounding, IndependentOfVertexOrder) {
     Transform identity;
     std::mt19937_64 rng(0x5eed0465);
     std::uniform_real_distribution<double> U(-3, 3);

@@ -5,6 +5,10 @@
 // precision, without using the area formulas. The same tessellation, built
 // as a lrt triangle mesh under several transformations, tests
 // Triangle::Area() in world space.
+//
+// The tests that call Area() are public tests of the chapter's exercises
+// (Ex4_9_* sphere, Ex4_10_* disk, Ex4_11_* triangle); the test of wrong
+// formulas calls no Area() and belongs to no exercise.
 
 #include "lrt/lrt.h"
 
@@ -192,7 +196,7 @@ double ToRadians(Float degrees) { return double(degrees) * kPi / 180; }
 
 }  // namespace
 
-TEST(AreaTessellation, PartialSphereConvergesAtSecondOrder) {
+TEST(Ex4_9_SphereTessellation, PartialSphereConvergesAtSecondOrder) {
     Transform identity;
     for (const SphereCase &s : SphereCases()) {
         Sphere sphere(&identity, &identity, false, s.radius, s.zMin, s.zMax,
@@ -203,7 +207,7 @@ TEST(AreaTessellation, PartialSphereConvergesAtSecondOrder) {
     }
 }
 
-TEST(AreaTessellation, RingConvergesAtSecondOrder) {
+TEST(Ex4_10_DiskTessellation, RingConvergesAtSecondOrder) {
     Transform identity;
     std::mt19937_64 rng(0x5eed0412);
     std::uniform_real_distribution<double> U(0, 1);
@@ -255,7 +259,7 @@ TEST(AreaTessellation, RejectsWrongFormulas) {
 // transformation: the sum over a tessellated partial sphere must match the
 // double-precision area of the world-space vertices, and for a rigid motion
 // (scaled uniformly by s) the object-space tessellation's area (times s^2).
-TEST(TriangleArea, TessellatedSphereUnderTransformations) {
+TEST(Ex4_11_TriangleMesh, TessellatedSphereUnderTransformations) {
     const double r = 1.25, zMin = -0.5, zMax = 1.1, phi = ToRadians(290);
     std::vector<Vec> pd = GridPoints(SphereMap(r, zMin, zMax, phi),
                                      kMeshGrid);

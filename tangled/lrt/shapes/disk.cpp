@@ -109,6 +109,7 @@ bool Disk::IntersectP(const Ray &r, bool /*testAlphaTexture*/) const {
 }
 // Disk Method Definitions
 Float Disk::Area() const {
+    // Compute the area of the partial ring
     return Float(0.5) * phiMax * (radius - innerRadius) *
            (radius + innerRadius);
 }

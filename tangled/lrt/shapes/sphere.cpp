@@ -180,6 +180,9 @@ bool Sphere::IntersectP(const Ray &r, bool /*testAlphaTexture*/) const {
     return true;
 }
 // Sphere Method Definitions
-Float Sphere::Area() const { return phiMax * radius * (zMax - zMin); }
+Float Sphere::Area() const {
+    // Compute the area of the partial sphere
+    return phiMax * radius * (zMax - zMin);
+}
 
 }  // namespace lrt

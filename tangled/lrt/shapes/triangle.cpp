@@ -320,6 +320,7 @@ Float Triangle::Area() const {
     const Point3f &p0 = mesh->p[v[0]];
     const Point3f &p1 = mesh->p[v[1]];
     const Point3f &p2 = mesh->p[v[2]];
+    // Compute the area from the edges in double precision
     double ax = double(p1.x) - p0.x, ay = double(p1.y) - p0.y,
            az = double(p1.z) - p0.z;
     double bx = double(p2.x) - p0.x, by = double(p2.y) - p0.y,

@@ -400,6 +400,7 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
     tree.reserve(prims.size() / 2 + 1);
     FastBVHChild binaryRoot = BuildSAH(prims, 0, int(prims.size()), box, 0,
                                        &tree);
+    nodes.reserve(tree.size() / 2 + 1);
     SetRoot(box, CollapseTree(tree, binaryRoot));
     // Store the primitives and their triangles in leaf order
     primitives.resize(prims.size());
@@ -528,6 +529,7 @@ void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
     std::vector<FastBVHBuildNode> tree;
     tree.reserve(bvh.Nodes().size() / 2);
     FastBVHChild binaryRoot = CopySubtree(bvh, 0, &tree);
+    nodes.reserve(tree.size() / 2 + 1);
     SetRoot(ToFastBox(bvh.Nodes()[0].bounds), CollapseTree(tree, binaryRoot));
 }
 // FastBVHAccel Method Definitions

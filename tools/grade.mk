@@ -1,13 +1,17 @@
 # Classroom grading (tools/grade.py; DESIGN.md section 7, docs/grading.md).
 # Included by the Makefile, so this runs from the repository root:
 #
-#   make grade SUBMISSION=path [OUT=dir] [GRADE_FLAGS="--time-limit 5 ..."]
+#   make grade SUBMISSION=path [CHAPTERS="05"] [OUT=dir] [GRADE_FLAGS="..."]
 #                       grade one submission (a directory, .tar.gz or .zip of
 #                       edited chapters): results.json (Gradescope), junit.xml
 #                       and results.txt in OUT (default build/grade/NAME)
-#   make grade-batch SUBMISSIONS=dir [OUT=dir]
+#   make grade-batch SUBMISSIONS=dir [CHAPTERS="05"] [OUT=dir]
 #                       every subdirectory or archive of dir is one student:
 #                       OUT/NAME/ each, and OUT/grades.csv (default build/grade/batch)
+#
+# CHAPTERS="02 05" grades the exercises of those chapters only, as make
+# exercises CHAPTERS=... chooses them (default: the chapters of a kit's
+# exercises.json, else every chapter with exercises).
 #
 # GRADE_FLAGS passes options through: --time-limit S, --memory-limit MB,
 # --allow-changes-outside-exercises, --cxxflags ... (tools/grade.py --help).
@@ -15,14 +19,17 @@
 .PHONY: grade grade-batch
 
 GRADE_CACHE = $(BUILD)/grade/cache
+# Here CHAPTERS may name chapter numbers; everywhere else it lists chapter files.
+GRADE_CHAPTERS = $(filter-out %.md,$(CHAPTERS))
 
 grade: | deps
 	@if [ -z "$(SUBMISSION)" ]; then echo "make grade: give SUBMISSION=path" >&2; exit 2; fi
-	python3 tools/grade.py --cache $(GRADE_CACHE) $(if $(OUT),--out $(OUT)) $(GRADE_FLAGS) \
-	    $(SUBMISSION)
+	python3 tools/grade.py --cache $(GRADE_CACHE) $(if $(OUT),--out $(OUT)) \
+	    $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") $(GRADE_FLAGS) $(SUBMISSION)
 
 grade-batch: | deps
 	@if [ -z "$(SUBMISSIONS)" ]; then echo "make grade-batch: give SUBMISSIONS=dir" >&2; \
 	    exit 2; fi
 	python3 tools/grade.py --cache $(GRADE_CACHE) --batch $(SUBMISSIONS) \
-	    $(if $(OUT),--out $(OUT)) $(GRADE_FLAGS)
+	    $(if $(OUT),--out $(OUT)) $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") \
+	    $(GRADE_FLAGS)

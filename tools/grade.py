@@ -10,7 +10,13 @@ ignored and reported. Archives are read member by member: no member is ever
 written outside the grader's own directory, links and special files are
 ignored, and sizes are limited.
 
-Each chapter with exercises that the submission holds is graded on its own:
+Which chapters are graded: those of --chapters ("05", "02 05"), else the
+chapters a kit was built for (the exercises.json of a kit that `make
+exercises CHAPTERS=...` made), else every chapter with exercises. Their
+exercises make up max_score; a graded chapter missing from the submission
+scores 0, and a chapter that is not graded is listed and left alone.
+
+Each graded chapter that the submission holds is graded on its own:
 the student's chapter N is tangled with the reference text of every other
 chapter (chapters 1..N), compiled, and chapter N's public and hidden tests are
 built. A compile error scores that chapter 0 and shows the first errors, at the
@@ -757,8 +763,8 @@ def hint_text(exercise, lines):
     return ' '.join(t for t in out if t)
 
 
-def grade(args, path, out):
-    root = args.root
+def load_book(root):
+    """The reference book: (chapter paths relative to root, exercises.Book)."""
     ref_paths = sorted(os.path.join('chapters', f) for f in os.listdir(
         os.path.join(root, 'chapters')) if CHAPTER_NAME.match(f))
     cwd = os.getcwd()
@@ -770,13 +776,54 @@ def grade(args, path, out):
     if book.errors:
         raise SystemExit('grade: the reference book has exercise errors:\n' +
                          '\n'.join(book.errors))
+    return ref_paths, book
+
+
+def graded_chapters(book, requested, root):
+    """The numbers of the chapters to grade: those requested (--chapters), else
+    the chapters a kit was built for (its exercises.json), else every chapter
+    with exercises. A requested chapter must exist and have exercises."""
+    with_exercises = [c.number for c in book.chapters if c.exercises]
+    if requested:
+        numbers = [c.number for c in book.chapters]
+        chosen = []
+        for word in re.split(r'[\s,]+', ' '.join(requested).strip()):
+            match = re.match(r'^(?:.*/)?(\d{1,2})(?:-[^/]*\.md)?$', word)
+            if not match:
+                raise SystemExit('grade: --chapters names chapters by number ("02 05"), '
+                                 'not %r' % word)
+            number = '%02d' % int(match.group(1))
+            if number not in numbers:
+                raise SystemExit('grade: there is no chapter %s (chapters: %s)'
+                                 % (number, ' '.join(numbers)))
+            if number not in with_exercises:
+                raise SystemExit('grade: chapter %s has no exercises (chapters with '
+                                 'exercises: %s)' % (number, ' '.join(with_exercises)))
+            chosen.append(number)
+        return sorted(set(chosen))
+    manifest = os.path.join(root, 'exercises.json')
+    if os.path.isfile(manifest):
+        try:
+            with open(manifest, encoding='utf-8') as f:
+                kit = json.load(f)['chosen_chapters']
+        except (OSError, ValueError, KeyError, TypeError) as e:
+            raise SystemExit('grade: %s cannot be read (%s): give --chapters'
+                             % (manifest, e))
+        return [n for n in with_exercises if n in kit]
+    return with_exercises
+
+
+def grade(args, path, out):
+    root = args.root
+    ref_paths, book = load_book(root)
+    selected = graded_chapters(book, args.chapters, root)
     label = re.sub(r'\.(tar\.gz|tgz|zip)$', '', os.path.basename(os.path.normpath(path)))
     report = Report(out, label)
     names = {os.path.basename(p): p for p in ref_paths}
     sub = read_submission(path, set(names))
-    chapters_with_exercises = [c for c in book.chapters if c.exercises]
+    graded = [c for c in book.chapters if c.number in selected]
     # Every exercise's tests, NOT-RUN until graded.
-    for chapter in chapters_with_exercises:
+    for chapter in graded:
         for e in chapter.exercises:
             report.exercises.append((chapter.number, e.id, e.points))
             tests = [(s, n, False) for s, n, _, _ in sorted(set(e.public_tests))] + \
@@ -794,16 +841,23 @@ def grade(args, path, out):
     if not sub.chapters:
         report.notes.insert(0, '**No chapter file found in the submission**: expected '
                             'chapters/NN-slug.md files, for example %s.'
-                            % ', '.join(c.path for c in chapters_with_exercises))
+                            % ', '.join(c.path for c in graded))
     else:
         report.notes.insert(0, 'Chapters found: %s' % ', '.join(
             '`%s`' % n for n, _ in sub.chapters.values()))
         for base in sorted(sub.chapters):
-            if not [c for c in chapters_with_exercises if os.path.basename(c.path) == base]:
+            chapter = [c for c in book.chapters if os.path.basename(c.path) == base][0]
+            if not chapter.exercises:
                 report.notes.append('- `%s` has no exercises: not graded'
                                     % sub.chapters[base][0])
+            elif chapter not in graded:
+                report.notes.append('- `%s`: not graded in this assignment (it grades '
+                                    'chapter%s %s)' % (sub.chapters[base][0],
+                                                       's' if len(graded) > 1 else '',
+                                                       ', '.join(c.number for c in graded)
+                                                       or 'none'))
     report.write()
-    for chapter in chapters_with_exercises:
+    for chapter in graded:
         base = os.path.basename(chapter.path)
         if base in sub.chapters:
             try:
@@ -930,10 +984,16 @@ def grade_batch(args):
     subs = submissions_in(args.batch)
     start = time.time()
     rows, done, broken = [], [0], []
+    # The chapters are resolved once, here, so that every student is graded
+    # on the same set (and a wrong --chapters stops the batch before it starts).
+    _, book = load_book(args.root)
+    chapters = graded_chapters(book, args.chapters, args.root)
     forwarded = ['--root', args.root, '--cache', args.cache, '--time-limit',
                  str(args.time_limit), '--memory-limit', str(args.memory_limit),
                  '--compile-time-limit', str(args.compile_time_limit),
                  '--cxxflags', args.cxxflags, '--build-jobs', '1']
+    if chapters:    # none: the kit chose no chapter with exercises; so will each child
+        forwarded += ['--chapters', ' '.join(chapters)]
     if args.allow_changes_outside_exercises:
         forwarded.append('--allow-changes-outside-exercises')
 
@@ -1013,6 +1073,10 @@ def main(argv=None):
     parser.add_argument('--cxxflags', default=DEFAULT_CXXFLAGS)
     parser.add_argument('--build-jobs', type=int, default=2)
     parser.add_argument('--workers', type=int, default=2, help='batch: parallel (at most 2)')
+    parser.add_argument('--chapters', action='append', metavar='"NN ..."',
+                        help='grade the exercises of these chapters only (numbers, '
+                        'separated by spaces or commas; default: the chapters of the '
+                        "kit's exercises.json, else every chapter with exercises)")
     parser.add_argument('--allow-changes-outside-exercises', action='store_true')
     parser.add_argument('--quiet', action='store_true')
     args = parser.parse_args(argv)

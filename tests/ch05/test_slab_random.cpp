@@ -282,7 +282,7 @@ void RandomFrame(Sampler &s, Float *scale, Point3f *offset) {
 // with infinite, random and near-boundary tMax. Every oracle hit must be
 // reported; a reported hit that the oracle calls a miss must come within
 // kMarginInU units of roundoff of touching the box.
-TEST(SlabTest, AgreesWithSixFaceOracle) {
+TEST(Ex5_9_SlabTest, AgreesWithSixFaceOracle) {
     Sampler s(0x5eed0005);
     long oracleHits = 0, slabHits = 0, nearMisses = 0, falseMisses = 0;
     long unwidenedFalseMisses = 0, flatBoxes = 0, parallel = 0;
@@ -418,7 +418,7 @@ TEST(SlabTest, AgreesWithSixFaceOracle) {
 // have an edge along an edge of their box; the box is the triangle's bounds
 // or larger; rays aim at edges, vertices, the interior and around, with
 // tMax infinite, random, or exactly at the triangle hit.
-TEST(SlabTest, ConservativeForTrianglesInsideTheBox) {
+TEST(Ex5_11_SlabTest, ConservativeForTrianglesInsideTheBox) {
     Sampler s(0xc0115e05);
     long triangleHits = 0, unwidenedMisses = 0, farOnlyMisses = 0;
     long falseMisses = 0, exactVerdicts = 0;
@@ -562,7 +562,7 @@ double DifferenceErrorInU(Float a, Float b) {
 // exceed the widened computed tf (and the library must report a hit). The
 // test also counts rays for which the comparison holds with equality, and
 // for which a smaller factor, 1 + 4u, or none would fail.
-TEST(SlabTest, WideningFactorIsNeededSufficientAndTight) {
+TEST(Ex5_11_SlabTest, WideningFactorIsNeededSufficientAndTight) {
     Sampler s(0x7187);
     // Directions whose reciprocal rounds up (for x) or down (for y) by
     // nearly the most it can, 0.9u or more.

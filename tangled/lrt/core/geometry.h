@@ -1085,6 +1085,7 @@ inline bool Bounds3<T>::IntersectP(const Ray &ray, const Vector3f &invDir,
     // Widen the ray's extent to cover rounding error
     t1 *= 1 + 2 * gamma(3);
     for (int i = 0; i < 3; ++i) {
+        // Look up the reciprocal direction and its sign on axis i
         Float invD = invDir[i];
         int isNeg = dirIsNeg[i];
         // Clip the parametric interval to slab i

@@ -387,8 +387,10 @@ class KitTest(unittest.TestCase):
                     'tools/tangle.py', 'tests/tools/test_toolchain.py',
                     'tangled/lrt/sums.cpp'):
             self.assertTrue(os.path.isfile(os.path.join(s, rel)), rel)
+        # The grader's tests grade the repository's solutions and could only
+        # fail in a student kit; a student's make test must not run them.
         for rel in ('tests/hidden', 'build', 'tests/tools/exercises',
-                    'tests/tools/test_exercises.py'):
+                    'tests/tools/test_exercises.py', 'tests/tools/test_grade.py'):
             self.assertFalse(os.path.exists(os.path.join(s, rel)), rel)
         tangled = read(os.path.join(s, 'tangled/lrt/sums.cpp'))
         self.assertIn('"Exercise ex-1.1 is not done yet: write <Add up the squares of v> "',

@@ -3,6 +3,9 @@
 // independent writer, read them back and compare; and they check that every
 // kind of malformed file is rejected with a message that says what is wrong
 // and where.
+//
+// Every test that reads a file belongs to exercise ex-3.24 (suites
+// Ex3_24_*), whose fragments parse the header lines of every file.
 
 #include "lrt/lrt.h"
 
@@ -239,7 +242,7 @@ void ExpectSameMesh(const TestMesh &m, const PlyMesh &r, bool exactFloat) {
 // Round trips: a random mesh of triangles, quads, pentagons and hexagons,
 // with normals and uv, in all three formats, with various property types,
 // names, and extra elements and properties that must be skipped.
-TEST(PlyReader, RoundTripAllFormats) {
+TEST(Ex3_24_PlyReader, RoundTripAllFormats) {
     std::mt19937_64 rng(5);
     TestMesh m = RandomMesh(rng, 300, 500);
     struct Variant {
@@ -271,7 +274,7 @@ TEST(PlyReader, RoundTripAllFormats) {
                 "polygons each)\n", files, m.p.size(), m.faces.size());
 }
 
-TEST(PlyReader, AsciiLayoutAndComments) {
+TEST(Ex3_24_PlyReader, AsciiLayoutAndComments) {
     // CRLF line ends, comments and obj_info in the header, blank lines and
     // tabs in the data, a last line without a newline.
     std::string text =
@@ -300,7 +303,7 @@ TEST(PlyReader, AsciiLayoutAndComments) {
 
 // A cube written as six quads (binary, big-endian) becomes twelve triangles
 // that a transformed ray hits where it should.
-TEST(PlyReader, CreatePLYMeshMakesTriangles) {
+TEST(Ex3_24_PlyReader, CreatePLYMeshMakesTriangles) {
     PlyBuilder b(Fmt::Big);
     b.Line("element vertex 8");
     b.Line("property float x");
@@ -378,7 +381,7 @@ std::string BinaryTriangle(int index2 = 2) {
 
 }  // namespace
 
-TEST(PlyReader, ErrorMessagesNameFileAndProblem) {
+TEST(Ex3_24_PlyReader, ErrorMessagesNameFileAndProblem) {
     struct Case {
         const char *name;
         std::string contents;

@@ -1,5 +1,6 @@
 // Tests of the Shape interface, of OffsetRayOrigin() and of the
-// Interaction::SpawnRay*() methods.
+// Interaction::SpawnRay*() methods. The tests of OffsetRayOrigin() and of
+// the methods that call it belong to exercise ex-3.22 (suites Ex3_22_*).
 #include "lrt/lrt.h"
 
 #include <gtest/gtest.h>
@@ -151,7 +152,7 @@ TEST(Shape, DefaultIntersectPCallsIntersect) {
     EXPECT_NEAR(tHit, 2, 1e-6);
 }
 
-TEST(OffsetRayOrigin, LeavesTheErrorBoxOnTheSideOfTheDirection) {
+TEST(Ex3_22_OffsetRayOrigin, LeavesTheErrorBoxOnTheSideOfTheDirection) {
     // For random points, error boxes, normals and directions: every corner
     // of the box p +- pError lies on or behind the plane through the offset
     // origin perpendicular to n, as seen from the side w points to.
@@ -196,7 +197,7 @@ TEST(OffsetRayOrigin, LeavesTheErrorBoxOnTheSideOfTheDirection) {
     EXPECT_GT(strictlyOutside, kOffsetCases * 8 / 10);
 }
 
-TEST(OffsetRayOrigin, ZeroNormalOrZeroErrorMeansNoOffset) {
+TEST(Ex3_22_OffsetRayOrigin, ZeroNormalOrZeroErrorMeansNoOffset) {
     lrt::Point3f p(1, 2, 3);
     EXPECT_EQ(lrt::OffsetRayOrigin(p, lrt::Vector3f(1, 1, 1), lrt::Normal3f(),
                                    lrt::Vector3f(0, 0, 1)),
@@ -214,7 +215,7 @@ TEST(OffsetRayOrigin, ZeroNormalOrZeroErrorMeansNoOffset) {
     EXPECT_EQ(po.z, lrt::NextFloatDown(lrt::Float(2.75f)));
 }
 
-TEST(Interaction, SpawnRay) {
+TEST(Ex3_22_Interaction, SpawnRay) {
     lrt::Interaction it(lrt::Point3f(1, 2, 3), lrt::Normal3f(0, 1, 0),
                         lrt::Vector3f(1e-3f, 2e-3f, 3e-3f),
                         lrt::Vector3f(0, 1, 0), 0.25f);
@@ -229,7 +230,7 @@ TEST(Interaction, SpawnRay) {
     EXPECT_LT(back.o.y, lrt::Float(2) - lrt::Float(2e-3f));
 }
 
-TEST(Interaction, SpawnRayTo) {
+TEST(Ex3_22_Interaction, SpawnRayTo) {
     Rng rng(332);
     for (int i = 0; i < 1000; ++i) {
         lrt::Point3f p(rng.U(-10, 10), rng.U(-10, 10), rng.U(-10, 10));

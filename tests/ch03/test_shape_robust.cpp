@@ -1,7 +1,8 @@
 // Robustness of spawned rays at every scale: rays spawned from hit points
 // with OffsetRayOrigin() never hit the surface they leave, and shadow rays
 // find occluders however close; a fixed "bias" offset fails at large scales
-// (self-intersection) and at small ones (light leaks).
+// (self-intersection) and at small ones (light leaks). All of them spawn
+// rays with OffsetRayOrigin() and belong to exercise ex-3.22 (Ex3_22_*).
 #include "lrt/lrt.h"
 
 #include <gtest/gtest.h>
@@ -135,7 +136,7 @@ struct Counts {
 
 }  // namespace
 
-TEST(Reintersection, SpawnedRaysNeverRehitTheirSurface) {
+TEST(Ex3_22_Reintersection, SpawnedRaysNeverRehitTheirSurface) {
     Rng rng(340);
     std::vector<double> scales = Scales();
     std::printf("[ spawn    ] %-8s %-15s %7s %11s %9s %9s %9s %9s %9s %s\n",
@@ -267,7 +268,7 @@ TEST(Reintersection, SpawnedRaysNeverRehitTheirSurface) {
     EXPECT_GT(largestFixed, 100);
 }
 
-TEST(Reintersection, ShadowRaysBetweenPointsOfOneSurface) {
+TEST(Ex3_22_Reintersection, ShadowRaysBetweenPointsOfOneSurface) {
     // Segments between two points of a convex sphere run through its
     // inside, and segments between two points of a disk lie in its plane:
     // with both ends offset, neither may be blocked by the surface itself.
@@ -294,7 +295,7 @@ TEST(Reintersection, ShadowRaysBetweenPointsOfOneSurface) {
     EXPECT_GT(tested, 1000);
 }
 
-TEST(FixedEpsilon, FailsAtLargeAndSmallScalesWhereOffsetsSucceed) {
+TEST(Ex3_22_FixedEpsilon, FailsAtLargeAndSmallScalesWhereOffsetsSucceed) {
     // Two parallel disks a small distance apart, like a floor and a thin
     // slab lying on it, with a light far above. Points on the floor under
     // the slab are in shadow. A shadow ray started a fixed distance above

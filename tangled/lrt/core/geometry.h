@@ -1033,6 +1033,7 @@ inline std::ostream &operator<<(std::ostream &os, const Bounds2<T> &b) {
 // Geometry Inline Functions
 inline Point3f OffsetRayOrigin(const Point3f &p, const Vector3f &pError,
                                const Normal3f &n, const Vector3f &w) {
+    // Offset p along n to the side of w
     Float d = Dot(Abs(n), pError);
     Vector3f offset = d * Vector3f(n);
     if (Dot(w, n) < 0) offset = -offset;

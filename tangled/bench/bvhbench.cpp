@@ -313,15 +313,7 @@ void RegisterTrace(const std::string &name, AccelSlot<Accel> slot,
         ->Unit(benchmark::kMillisecond);
 }
 // BVH Benchmark Measurement Functions
-const char *MethodName(SplitMethod m) {
-    switch (m) {
-    case SplitMethod::SAH: return "SAH";
-    case SplitMethod::HLBVH: return "HLBVH";
-    case SplitMethod::Middle: return "Middle";
-    case SplitMethod::EqualCounts: return "EqualCounts";
-    }
-    return "unknown";
-}
+const char *MethodName(SplitMethod m) { return BVHAccel::SplitMethodName(m); }
 
 std::string BenchName(const BenchMesh &mesh, SplitMethod method,
                       const std::string &version, const std::string &what) {

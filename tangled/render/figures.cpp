@@ -210,8 +210,6 @@ Image HeatMaps() {
     const int maxVisits = 120;
     std::vector<Image> panels;
     using SM = BVHAccel::SplitMethod;
-    const char *names[] = {"SAH", "HLBVH", "Middle", "EqualCounts"};
-    int k = 0;
     for (SM m : {SM::SAH, SM::HLBVH, SM::Middle, SM::EqualCounts}) {
         BVHAccel bvh(prims, 4, m);
         std::vector<int> visits;
@@ -220,7 +218,8 @@ Image HeatMaps() {
         int most = 0;
         for (int v : visits) sum += v, most = std::max(most, v);
         std::printf("  %-12s %6.1f node visits per pixel on average, "
-                    "at most %d\n", names[k++], sum / visits.size(), most);
+                    "at most %d\n", BVHAccel::SplitMethodName(m),
+                    sum / visits.size(), most);
     }
     // Append a color bar to the tiled heat maps
     Image maps = Tile(panels, 2);

@@ -90,6 +90,16 @@ class BVHAccel : public Aggregate {
   public:
     // BVHAccel Public Types
     enum class SplitMethod { SAH, HLBVH, Middle, EqualCounts };
+    // BVHAccel Public Types
+    static const char *SplitMethodName(SplitMethod m) {
+        switch (m) {
+        case SplitMethod::SAH: return "SAH";
+        case SplitMethod::HLBVH: return "HLBVH";
+        case SplitMethod::Middle: return "Middle";
+        case SplitMethod::EqualCounts: return "EqualCounts";
+        }
+        return "unknown";
+    }
     // BVHAccel Public Methods
     BVHAccel(std::vector<std::shared_ptr<Primitive>> p,
              int maxPrimsInNode = 1, SplitMethod splitMethod = SplitMethod::SAH);

@@ -3,7 +3,15 @@
 // brute-force loop over the primitives, on thousands of random scenes of
 // spheres, disks and triangles; structure invariants of every tree built;
 // degenerate inputs; Morton codes against a bit-by-bit interleaving.
+//
+// The suites Ex6_12_*, Ex6_13_* and Ex6_14_* are the public tests of the
+// chapter's graded exercises (docs/exercises.md): BVHAccel's SAH decisions,
+// checked against the cost model in double precision; the Morton codes and
+// the order of an HLBVH tree's primitives along the curve; the order in
+// which BVHAccel's traversal visits children, seen through the primitives it
+// tests. The other tests use no exercise's code (see Accel below).
 
+#include "bvh_checks.h"
 #include "lrt/lrt.h"
 
 #include <gtest/gtest.h>
@@ -22,11 +30,17 @@
 #include <vector>
 
 using namespace lrt;
+using lrt_test::BoxPrimitive;
+using lrt_test::CheckMortonOrder;
+using lrt_test::CheckSAHChoices;
+using lrt_test::SAHCheck;
+using lrt_test::TreeWalker;
 using SplitMethod = BVHAccel::SplitMethod;
 
 namespace {
 
 constexpr int kRandomScenes = 1200;
+constexpr int kExerciseRandomScenes = 300;
 constexpr int kRaysPerScene = 32;
 constexpr int kMaxFailuresReported = 10;
 const SplitMethod kMethods[] = {SplitMethod::SAH, SplitMethod::HLBVH,
@@ -38,15 +52,7 @@ const int kLeafSizes[] = {1, 2, 4, 7, 255};
 // exceed the smallest one by this relative amount.
 const Float kTieTolerance = 256 * std::numeric_limits<Float>::epsilon();
 
-const char *MethodName(SplitMethod m) {
-    switch (m) {
-    case SplitMethod::SAH: return "SAH";
-    case SplitMethod::HLBVH: return "HLBVH";
-    case SplitMethod::Middle: return "Middle";
-    case SplitMethod::EqualCounts: return "EqualCounts";
-    }
-    return "?";
-}
+const char *MethodName(SplitMethod m) { return BVHAccel::SplitMethodName(m); }
 
 // A scene owns its transformations: shapes keep pointers to them.
 struct Scene {
@@ -431,56 +437,6 @@ void CheckStructure(const FastBVHAccel &bvh,
     EXPECT_EQ(s.maxDepth, maxDepth);
 }
 
-// Builds every kind of accelerator over the scene with the given split
-// method and leaf sizes, checks their structure, and compares each with
-// brute force on random rays.
-void RunRandomScenes(SplitMethod method, uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    int failures = 0;
-    int64_t rays = 0, hits = 0;
-    for (int sceneIndex = 0; sceneIndex < kRandomScenes; ++sceneIndex) {
-        Scene scene = RandomScene(rng);
-        std::vector<std::unique_ptr<Primitive>> accels;
-        std::vector<std::string> names;
-        for (int leafSize : kLeafSizes) {
-            auto bvh = std::make_unique<BVHAccel>(scene.prims, leafSize,
-                                                  method);
-            CheckStructure(*bvh, scene.prims);
-            auto adopted = std::make_unique<FastBVHAccel>(*bvh);
-            CheckStructure(*adopted, scene.prims);
-            auto fast = std::make_unique<FastBVHAccel>(scene.prims, leafSize,
-                                                       method);
-            CheckStructure(*fast, scene.prims);
-            std::string suffix = "(" + std::to_string(leafSize) + ")";
-            names.push_back("BVHAccel" + suffix);
-            names.push_back("FastBVHAccel from BVHAccel" + suffix);
-            names.push_back("FastBVHAccel" + suffix);
-            accels.push_back(std::move(bvh));
-            accels.push_back(std::move(adopted));
-            accels.push_back(std::move(fast));
-        }
-        if (::testing::Test::HasFatalFailure()) return;
-        for (int r = 0; r < kRaysPerScene; ++r) {
-            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
-            Oracle o = BruteForce(scene.prims, ray);
-            ++rays;
-            hits += !o.hits.empty();
-            for (size_t a = 0; a < accels.size(); ++a) {
-                std::string e = Compare(*accels[a], ray, o);
-                if (!e.empty() && failures++ < kMaxFailuresReported)
-                    ADD_FAILURE() << MethodName(method) << " " << names[a]
-                                  << ", scene " << sceneIndex << " ("
-                                  << scene.prims.size() << " primitives), ray "
-                                  << ray << ": " << e;
-            }
-        }
-    }
-    EXPECT_EQ(failures, 0);
-    // The rays must actually exercise hits, and misses.
-    EXPECT_GT(hits, rays / 5);
-    EXPECT_LT(hits, rays * 9 / 10);
-}
-
 std::shared_ptr<Primitive> UnitSphereAt(Scene &scene, const Point3f &c,
                                         Float r = 1) {
     const Transform *a = scene.Keep(Translate(Vector3f(c)));
@@ -508,22 +464,423 @@ class OddBoundsPrimitive : public Primitive {
     Bounds3f b;
 };
 
-template <typename Accel>
-std::vector<std::unique_ptr<Primitive>> AllAccelerators(
-    const std::vector<std::shared_ptr<Primitive>> &prims, int leafSize) {
-    std::vector<std::unique_ptr<Primitive>> v;
-    for (SplitMethod m : kMethods)
-        v.push_back(std::make_unique<Accel>(prims, leafSize, m));
+// The accelerators under test come in sets. Chapter 6's graded exercises
+// hold BVHAccel's SAH decisions (ex-6.12), the Morton codes and radix sort
+// of its HLBVH build (ex-6.13) and its choice of the child to visit first
+// (ex-6.14); in the student edition all of them throw. A test of exercise K
+// (suite Ex6_K_*) uses the set of that exercise; every other test uses
+// accelerators whose code holds no exercise: FastBVHAccel with its own SAH
+// builder and with BVHAccel's Middle and EqualCounts builders, and BVHAccel's
+// Middle and EqualCounts trees, traced through a FastBVHAccel that adopts
+// them. Each set checks the structure of every tree it builds.
+struct Accel {
+    std::string name;
+    std::unique_ptr<Primitive> accel;
+};
+using Prims = std::vector<std::shared_ptr<Primitive>>;
+using AccelSet = std::function<std::vector<Accel>(const Prims &, int)>;
+
+std::string Label(const std::string &kind, SplitMethod m, int leafSize) {
+    return kind + " " + MethodName(m) + "(" + std::to_string(leafSize) + ")";
+}
+
+void AddAdopted(std::vector<Accel> *v, const BVHAccel &bvh,
+                const Prims &prims, SplitMethod m, int leafSize) {
+    auto adopted = std::make_unique<FastBVHAccel>(bvh);
+    CheckStructure(*adopted, prims);
+    v->push_back({Label("FastBVHAccel from BVHAccel", m, leafSize),
+                  std::move(adopted)});
+}
+
+const std::vector<SplitMethod> kPlainMethods = {
+    SplitMethod::SAH, SplitMethod::Middle, SplitMethod::EqualCounts};
+
+// No exercise: FastBVHAccel with the given methods (not HLBVH) and, for
+// Middle and EqualCounts, BVHAccel's tree adopted by a FastBVHAccel.
+AccelSet Plain(std::vector<SplitMethod> methods) {
+    return [methods](const Prims &prims, int leafSize) {
+        std::vector<Accel> v;
+        for (SplitMethod m : methods) {
+            if (m != SplitMethod::SAH) {
+                BVHAccel bvh(prims, leafSize, m);
+                CheckStructure(bvh, prims);
+                AddAdopted(&v, bvh, prims, m, leafSize);
+            }
+            auto fast = std::make_unique<FastBVHAccel>(prims, leafSize, m);
+            CheckStructure(*fast, prims);
+            v.push_back({Label("FastBVHAccel", m, leafSize), std::move(fast)});
+        }
+        return v;
+    };
+}
+
+// BVHAccel itself, traced by its own Intersect() and IntersectP(): with
+// Middle and EqualCounts, the set of ex-6.14. (A tree of a single leaf
+// never reaches the exercise's code.)
+AccelSet OwnTraversal(std::vector<SplitMethod> methods) {
+    return [methods](const Prims &prims, int leafSize) {
+        std::vector<Accel> v;
+        for (SplitMethod m : methods) {
+            auto bvh = std::make_unique<BVHAccel>(prims, leafSize, m);
+            CheckStructure(*bvh, prims);
+            v.push_back({Label("BVHAccel", m, leafSize), std::move(bvh)});
+        }
+        return v;
+    };
+}
+const AccelSet kTraversalSet =
+    OwnTraversal({SplitMethod::Middle, SplitMethod::EqualCounts});
+
+// ex-6.12: BVHAccel's SAH tree, its decisions checked against the cost
+// model, traced by a TreeWalker and by a FastBVHAccel that adopts it.
+std::vector<Accel> SAHSet(const Prims &prims, int leafSize) {
+    std::vector<Accel> v;
+    auto bvh = std::make_shared<BVHAccel>(prims, leafSize, SplitMethod::SAH);
+    std::string name = Label("BVHAccel", SplitMethod::SAH, leafSize);
+    CheckStructure(*bvh, prims);
+    CheckSAHChoices(*bvh, name.c_str());
+    AddAdopted(&v, *bvh, prims, SplitMethod::SAH, leafSize);
+    v.push_back({name + " traced by TreeWalker",
+                 std::make_unique<TreeWalker>(bvh)});
     return v;
+}
+
+// ex-6.13: BVHAccel's HLBVH tree, its primitives checked to be in Morton
+// order, traced by a TreeWalker and by a FastBVHAccel that adopts it; and
+// FastBVHAccel with the HLBVH, which uses BVHAccel's builder.
+std::vector<Accel> HLBVHSet(const Prims &prims, int leafSize) {
+    std::vector<Accel> v;
+    auto bvh =
+        std::make_shared<BVHAccel>(prims, leafSize, SplitMethod::HLBVH);
+    std::string name = Label("BVHAccel", SplitMethod::HLBVH, leafSize);
+    CheckStructure(*bvh, prims);
+    CheckMortonOrder(*bvh, name.c_str());
+    AddAdopted(&v, *bvh, prims, SplitMethod::HLBVH, leafSize);
+    v.push_back({name + " traced by TreeWalker",
+                 std::make_unique<TreeWalker>(bvh)});
+    auto fast =
+        std::make_unique<FastBVHAccel>(prims, leafSize, SplitMethod::HLBVH);
+    CheckStructure(*fast, prims);
+    v.push_back({Label("FastBVHAccel", SplitMethod::HLBVH, leafSize),
+                 std::move(fast)});
+    return v;
+}
+
+// Builds the set's accelerators over random scenes with several leaf sizes
+// and compares each with brute force on random rays.
+void RunRandomScenes(const AccelSet &set, uint64_t seed, int nScenes) {
+    std::mt19937_64 rng(seed);
+    int failures = 0;
+    int64_t rays = 0, hits = 0;
+    for (int sceneIndex = 0; sceneIndex < nScenes; ++sceneIndex) {
+        Scene scene = RandomScene(rng);
+        std::vector<Accel> accels;
+        for (int leafSize : kLeafSizes)
+            for (Accel &a : set(scene.prims, leafSize))
+                accels.push_back(std::move(a));
+        if (::testing::Test::HasFatalFailure()) return;
+        for (int r = 0; r < kRaysPerScene; ++r) {
+            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
+            Oracle o = BruteForce(scene.prims, ray);
+            ++rays;
+            hits += !o.hits.empty();
+            for (const Accel &a : accels) {
+                std::string e = Compare(*a.accel, ray, o);
+                if (!e.empty() && failures++ < kMaxFailuresReported)
+                    ADD_FAILURE() << a.name << ", scene " << sceneIndex
+                                  << " (" << scene.prims.size()
+                                  << " primitives), ray " << ray << ": " << e;
+            }
+        }
+    }
+    EXPECT_EQ(failures, 0);
+    // The rays must actually exercise hits, and misses.
+    EXPECT_GT(hits, rays / 5);
+    EXPECT_LT(hits, rays * 9 / 10);
+}
+
+// The degenerate scenes, each checked with the accelerators of a set.
+
+void CheckOnePrimitive(const AccelSet &set) {
+    Scene scene;
+    UnitSphereAt(scene, Point3f(1, 2, 3), 0.5f);
+    std::mt19937_64 rng(611);
+    for (int leafSize : {1, 4}) {
+        std::vector<Accel> accels = set(scene.prims, leafSize);
+        for (int i = 0; i < 2000; ++i) {
+            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
+            Oracle o = BruteForce(scene.prims, ray);
+            for (const Accel &a : accels)
+                EXPECT_EQ(Compare(*a.accel, ray, o), "") << a.name;
+        }
+    }
+}
+
+// Many primitives with the same centroid: pbrt would make one leaf of all
+// of them; ours keeps leaves within the limit, and 70,000 copies of one
+// triangle (more than a 16-bit count holds) must work.
+void CheckAllCentroidsEqual(const AccelSet &set) {
+    Scene scene;
+    std::vector<Point3f> p = {Point3f(-1, -1, 0), Point3f(1, -1, 0),
+                              Point3f(0, 2, 0)};
+    std::vector<int> idx;
+    for (int i = 0; i < 70000; ++i) idx.insert(idx.end(), {0, 1, 2});
+    scene.AddTriangles(p, idx);
+    for (int i = 0; i < 50; ++i)  // concentric spheres: equal centroids
+        UnitSphereAt(scene, Point3f(0, 0, 0), 3 + Float(i) / 10);
+    for (int leafSize : {1, 4}) {
+        for (const Accel &acc : set(scene.prims, leafSize)) {
+            SCOPED_TRACE(acc.name);
+            const Primitive *a = acc.accel.get();
+            // From inside all the spheres, down onto the triangle.
+            Ray ray(Point3f(0.1f, 0.2f, 1), Vector3f(0, 0, -1));
+            SurfaceInteraction si;
+            ASSERT_TRUE(a->Intersect(ray, &si));
+            EXPECT_EQ(ray.tMax, 1);
+            EXPECT_NE(AsTriangle(si.primitive), nullptr);
+            // From outside: the largest sphere comes first.
+            Ray out(Point3f(0, 0, 20), Vector3f(0, 0, -1));
+            ASSERT_TRUE(a->Intersect(out, &si));
+            EXPECT_NEAR(out.tMax, 20 - 7.9f, 1e-4f);
+            EXPECT_TRUE(a->IntersectP(Ray(Point3f(0.1f, 0.2f, 1),
+                                          Vector3f(0, 0, -1), 1.5f)));
+            EXPECT_FALSE(a->IntersectP(Ray(Point3f(0.1f, 0.2f, 1),
+                                           Vector3f(0, 0, -1), 0.5f)));
+        }
+    }
+}
+
+// Boxes of zero extent in one or more dimensions: flat triangles and disks
+// in coordinate planes, rays lying in those planes, and triangles that
+// collapse to a point (which no ray can hit).
+void CheckZeroExtentBoxes(const AccelSet &set) {
+    Scene scene;
+    std::vector<Point3f> p;
+    std::vector<int> idx;
+    for (int i = 0; i < 40; ++i) {
+        Float x = Float(i % 8), y = Float(i / 8);
+        p.insert(p.end(), {Point3f(x, y, 0), Point3f(x + 1, y, 0),
+                           Point3f(x, y + 1, 0)});
+        idx.insert(idx.end(), {3 * i, 3 * i + 1, 3 * i + 2});
+    }
+    for (int i = 0; i < 10; ++i) {  // points
+        int base = int(p.size());
+        Point3f q(Float(i), 3.5f, 2);
+        p.insert(p.end(), {q, q, q});
+        idx.insert(idx.end(), {base, base + 1, base + 2});
+    }
+    scene.AddTriangles(p, idx);
+    for (int i = 0; i < 10; ++i) {
+        const Transform *a = scene.Keep(Translate(Vector3f(Float(i), 7, 0)));
+        const Transform *b = scene.Keep(Translate(Vector3f(-Float(i), -7, 0)));
+        scene.Add(std::make_shared<Disk>(a, b, false, 1.f, 0.4f, 0.f, 360.f));
+    }
+    std::mt19937_64 rng(612);
+    int failures = 0;
+    for (int leafSize : {1, 3, 16}) {
+        std::vector<Accel> accels = set(scene.prims, leafSize);
+        for (int i = 0; i < 3000; ++i) {
+            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
+            if (i % 3 == 0) {  // in the plane z = 0 or z = 1
+                ray.o.z = Float(i % 2);
+                ray.d.z = i % 6 == 0 ? Float(0) : -Float(0);
+                if (ray.d.LengthSquared() == 0) ray.d.x = 1;
+            }
+            Oracle o = BruteForce(scene.prims, ray);
+            for (const Accel &a : accels) {
+                std::string e = Compare(*a.accel, ray, o);
+                if (!e.empty() && failures++ < kMaxFailuresReported)
+                    ADD_FAILURE() << a.name << " " << ray << ": " << e;
+            }
+        }
+        // Straight down onto each flat triangle and disk.
+        for (const Accel &acc : accels) {
+            SCOPED_TRACE(acc.name);
+            Ray down(Point3f(3.25f, 2.25f, 5), Vector3f(0, 0, -1));
+            SurfaceInteraction si;
+            ASSERT_TRUE(acc.accel->Intersect(down, &si));
+            EXPECT_EQ(down.tMax, 5);
+            Ray disk(Point3f(4.1f, 7.1f, 5), Vector3f(0, 0, -1));
+            ASSERT_TRUE(acc.accel->Intersect(disk, &si));
+            EXPECT_NEAR(disk.tMax, 4, 1e-5f);
+        }
+    }
+}
+
+// A primitive that reports a NaN, infinite or empty box (an empty
+// aggregate, for one) is left out of the tree and never hit; a finite box at
+// the limits of the range is kept, and its centroid must not overflow.
+void CheckNaNAndInfiniteBounds(const AccelSet &set) {
+    Scene scene;
+    UnitSphereAt(scene, Point3f(0, 0, 5));
+    UnitSphereAt(scene, Point3f(3, 0, 5));
+    const Float nan = std::numeric_limits<Float>::quiet_NaN();
+    std::vector<std::shared_ptr<Primitive>> prims = scene.prims;
+    Bounds3f nanBox(Point3f(0, 0, 0), Point3f(1, 1, 1));
+    nanBox.pMax.y = nan;
+    Bounds3f infBox(Point3f(0, 0, 0), Point3f(Infinity, 1, 1));
+    Bounds3f hugeBox(Point3f(-MaxFloat, -MaxFloat, -MaxFloat),
+                     Point3f(MaxFloat, MaxFloat, MaxFloat));
+    prims.push_back(std::make_shared<OddBoundsPrimitive>(nanBox));
+    prims.push_back(std::make_shared<OddBoundsPrimitive>(infBox));
+    prims.push_back(std::make_shared<OddBoundsPrimitive>(Bounds3f()));
+    std::vector<std::shared_ptr<Primitive>> none;
+    prims.push_back(std::make_shared<BVHAccel>(none));
+    auto huge = std::make_shared<OddBoundsPrimitive>(hugeBox);
+    std::vector<std::shared_ptr<Primitive>> withHuge = prims;
+    withHuge.push_back(huge);
+    for (int leafSize : {1, 4}) {
+        for (const Accel &acc : set(prims, leafSize)) {
+            SCOPED_TRACE(acc.name);
+            Ray ray(Point3f(0, 0, 0), Vector3f(0, 0, 1));
+            SurfaceInteraction si;
+            ASSERT_TRUE(acc.accel->Intersect(ray, &si));
+            EXPECT_NEAR(ray.tMax, 4, 1e-5f);  // the sphere, not t = 1
+            EXPECT_FALSE(acc.accel->IntersectP(
+                Ray(Point3f(0, 0, 0), Vector3f(0, 0, 1), 2)));
+        }
+        for (const Accel &acc : set(withHuge, leafSize)) {
+            SCOPED_TRACE(acc.name);
+            Ray ray(Point3f(0, 0, 0), Vector3f(0, 0, 1));
+            SurfaceInteraction si;
+            ASSERT_TRUE(acc.accel->Intersect(ray, &si));
+            EXPECT_EQ(ray.tMax, 1);
+            EXPECT_EQ(si.primitive, huge.get());
+        }
+    }
+}
+
+// Centroids at 1, 1/2, 1/4, ...: Middle and the SAH split off one
+// primitive per level, which would make a chain far deeper than the
+// traversal stack. The depth bound keeps every tree within it (which
+// CheckStructure() checks).
+void CheckExponentiallySpacedCentroids(const AccelSet &set) {
+    Scene scene;
+    std::vector<Point3f> p;
+    std::vector<int> idx;
+    int n = sizeof(Float) == 4 ? 140 : 1000;
+    for (int i = 0; i < n; ++i) {
+        Float x = std::ldexp(Float(1), -i);
+        Float h = x / 4;
+        int base = int(p.size());
+        p.insert(p.end(), {Point3f(x - h, -1, 0), Point3f(x + h, -1, 0),
+                           Point3f(x, 1, 0)});
+        idx.insert(idx.end(), {base, base + 1, base + 2});
+    }
+    scene.AddTriangles(p, idx);
+    std::mt19937_64 rng(613);
+    int failures = 0;
+    for (int leafSize : {1, 2}) {
+        std::vector<Accel> accels = set(scene.prims, leafSize);
+        for (int i = 0; i < 2000; ++i) {
+            Ray ray(Point3f(std::ldexp(Float(1), -int(rng() % n)) *
+                                Float(U(rng, 0.8, 1.2)),
+                            Float(U(rng, -1, 1)), 1),
+                    Vector3f(0, 0, -1));
+            Oracle o = BruteForce(scene.prims, ray);
+            for (const Accel &a : accels) {
+                std::string e = Compare(*a.accel, ray, o);
+                if (!e.empty() && failures++ < kMaxFailuresReported)
+                    ADD_FAILURE() << a.name << " " << ray << ": " << e;
+            }
+        }
+    }
+}
+
+// A closed mesh: an octahedron subdivided `levels` times, on the unit
+// sphere.
+void ClosedMesh(int levels, std::vector<Point3f> *pOut,
+                std::vector<int> *idxOut) {
+    std::vector<Point3f> p = {Point3f(1, 0, 0),  Point3f(-1, 0, 0),
+                              Point3f(0, 1, 0),  Point3f(0, -1, 0),
+                              Point3f(0, 0, 1),  Point3f(0, 0, -1)};
+    std::vector<int> idx = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
+                            2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+    for (int level = 0; level < levels; ++level) {  // 1-to-4 subdivision
+        std::vector<int> next;
+        std::map<std::pair<int, int>, int> mid;
+        auto midpoint = [&](int a, int b) {
+            auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            Vector3f m =
+                Vector3f(p[a]) * Float(0.5) + Vector3f(p[b]) * Float(0.5);
+            p.push_back(Point3f(Normalize(m)));
+            return mid[key] = int(p.size()) - 1;
+        };
+        for (size_t t = 0; t < idx.size(); t += 3) {
+            int a = idx[t], b = idx[t + 1], c = idx[t + 2];
+            int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+            next.insert(next.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc,
+                                     ca});
+        }
+        idx = next;
+    }
+    *pOut = p;
+    *idxOut = idx;
+}
+
+// Random boxes for the tests of the SAH and HLBVH trees: in a cube, in
+// clusters, on a plane (boxes flat in z), on a line (segments along x, of
+// zero area), many copies of a few, or large boxes around nearly the same
+// center (where leaves are cheaper than splits); sizes over several orders
+// of magnitude.
+Prims RandomBoxes(std::mt19937_64 &rng, int n) {
+    Prims prims;
+    int kind = int(rng() % 6);
+    int nCenters = 1 + int(rng() % 4);
+    std::vector<Point3f> centers;
+    for (int i = 0; i < nCenters; ++i)
+        centers.push_back(RandomPoint(rng, Point3f(0, 0, 0), 50));
+    std::vector<Bounds3f> few;
+    while (int(prims.size()) < n) {
+        Point3f c = RandomPoint(rng, Point3f(0, 0, 0), 50);
+        if (kind == 1)
+            c = RandomPoint(rng, centers[rng() % nCenters], U(rng, 0.5, 5));
+        Vector3f half(Float(std::pow(10.0, U(rng, -2, 1))),
+                      Float(std::pow(10.0, U(rng, -2, 1))),
+                      Float(std::pow(10.0, U(rng, -2, 1))));
+        if (kind == 2) {
+            c.z = 0;
+            half.z = 0;
+        }
+        if (kind == 3) {
+            c.y = c.z = 0;
+            half.y = half.z = 0;
+        }
+        Bounds3f b(c - half, c + half);
+        if (kind == 4) {
+            if (few.size() < 3) few.push_back(b);
+            b = few[rng() % few.size()];
+        }
+        if (kind == 5) {
+            c = RandomPoint(rng, centers[0], 0.2);
+            b = Bounds3f(c - Vector3f(3, 2, 1), c + Vector3f(3, 2, 1));
+        }
+        prims.push_back(std::make_shared<BoxPrimitive>(b));
+    }
+    return prims;
+}
+
+// Unit cubes [x, x + 1] x [0, 1] x [0, 1] at the given x, as primitives.
+Prims CubesAlongX(std::initializer_list<double> xs) {
+    Prims prims;
+    for (double x : xs)
+        prims.push_back(std::make_shared<BoxPrimitive>(
+            Bounds3f(Point3f(Float(x), 0, 0), Point3f(Float(x + 1), 1, 1))));
+    return prims;
 }
 
 }  // namespace
 
-TEST(BVHRandomScenes, SAH) { RunRandomScenes(SplitMethod::SAH, 601); }
-TEST(BVHRandomScenes, HLBVH) { RunRandomScenes(SplitMethod::HLBVH, 602); }
-TEST(BVHRandomScenes, Middle) { RunRandomScenes(SplitMethod::Middle, 603); }
+TEST(BVHRandomScenes, SAH) {
+    RunRandomScenes(Plain({SplitMethod::SAH}), 601, kRandomScenes);
+}
+TEST(BVHRandomScenes, Middle) {
+    RunRandomScenes(Plain({SplitMethod::Middle}), 603, kRandomScenes);
+}
 TEST(BVHRandomScenes, EqualCounts) {
-    RunRandomScenes(SplitMethod::EqualCounts, 604);
+    RunRandomScenes(Plain({SplitMethod::EqualCounts}), 604, kRandomScenes);
 }
 
 TEST(BVHDegenerate, NoPrimitives) {
@@ -548,19 +905,19 @@ TEST(BVHDegenerate, NoPrimitives) {
     }
 }
 
+// A tree of a single leaf: BVHAccel's own traversal and its SAH builder
+// never reach an exercise's code then (the HLBVH does: its test is
+// Ex6_13_HLBVH.DegenerateScenes).
 TEST(BVHDegenerate, OnePrimitive) {
+    CheckOnePrimitive([](const Prims &prims, int leafSize) {
+        std::vector<Accel> v = Plain(kPlainMethods)(prims, leafSize);
+        for (Accel &a : OwnTraversal(kPlainMethods)(prims, leafSize))
+            v.push_back(std::move(a));
+        return v;
+    });
     Scene scene;
     UnitSphereAt(scene, Point3f(1, 2, 3), 0.5f);
-    std::mt19937_64 rng(611);
     for (int leafSize : {1, 4}) {
-        auto accels = AllAccelerators<BVHAccel>(scene.prims, leafSize);
-        auto fast = AllAccelerators<FastBVHAccel>(scene.prims, leafSize);
-        for (auto &f : fast) accels.push_back(std::move(f));
-        for (int i = 0; i < 2000; ++i) {
-            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
-            Oracle o = BruteForce(scene.prims, ray);
-            for (auto &a : accels) EXPECT_EQ(Compare(*a, ray, o), "");
-        }
         BVHAccel bvh(scene.prims, leafSize);
         EXPECT_EQ(bvh.Nodes().size(), 1u);
         EXPECT_EQ(bvh.WorldBound(), scene.prims[0]->WorldBound());
@@ -586,107 +943,15 @@ TEST(BVHDegenerate, ArgumentChecks) {
     EXPECT_EQ(FastBVHAccel(scene.prims, 1000).MaxPrimsInNode(), 255);
 }
 
-// Many primitives with the same centroid: pbrt would make one leaf of all
-// of them; ours keeps leaves within the limit, and 70,000 copies of one
-// triangle (more than a 16-bit count holds) must work.
 TEST(BVHDegenerate, AllCentroidsEqual) {
-    Scene scene;
-    std::vector<Point3f> p = {Point3f(-1, -1, 0), Point3f(1, -1, 0),
-                              Point3f(0, 2, 0)};
-    std::vector<int> idx;
-    for (int i = 0; i < 70000; ++i) idx.insert(idx.end(), {0, 1, 2});
-    scene.AddTriangles(p, idx);
-    for (int i = 0; i < 50; ++i)  // concentric spheres: equal centroids
-        UnitSphereAt(scene, Point3f(0, 0, 0), 3 + Float(i) / 10);
-    for (int leafSize : {1, 4}) {
-        for (SplitMethod m : kMethods) {
-            BVHAccel bvh(scene.prims, leafSize, m);
-            CheckStructure(bvh, scene.prims);
-            FastBVHAccel fast(scene.prims, leafSize, m);
-            CheckStructure(fast, scene.prims);
-            for (const Primitive *a :
-                 {(const Primitive *)&bvh, (const Primitive *)&fast}) {
-                // From inside all the spheres, down onto the triangle.
-                Ray ray(Point3f(0.1f, 0.2f, 1), Vector3f(0, 0, -1));
-                SurfaceInteraction si;
-                ASSERT_TRUE(a->Intersect(ray, &si));
-                EXPECT_EQ(ray.tMax, 1);
-                EXPECT_NE(AsTriangle(si.primitive), nullptr);
-                // From outside: the largest sphere comes first.
-                Ray out(Point3f(0, 0, 20), Vector3f(0, 0, -1));
-                ASSERT_TRUE(a->Intersect(out, &si));
-                EXPECT_NEAR(out.tMax, 20 - 7.9f, 1e-4f);
-                EXPECT_TRUE(a->IntersectP(Ray(Point3f(0.1f, 0.2f, 1),
-                                              Vector3f(0, 0, -1), 1.5f)));
-                EXPECT_FALSE(a->IntersectP(Ray(Point3f(0.1f, 0.2f, 1),
-                                               Vector3f(0, 0, -1), 0.5f)));
-            }
-        }
-    }
+    CheckAllCentroidsEqual(Plain(kPlainMethods));
 }
 
-// Boxes of zero extent in one or more dimensions: flat triangles and disks
-// in coordinate planes, rays lying in those planes, and triangles that
-// collapse to a point (which no ray can hit).
 TEST(BVHDegenerate, ZeroExtentBoxes) {
-    Scene scene;
-    std::vector<Point3f> p;
-    std::vector<int> idx;
-    for (int i = 0; i < 40; ++i) {
-        Float x = Float(i % 8), y = Float(i / 8);
-        p.insert(p.end(), {Point3f(x, y, 0), Point3f(x + 1, y, 0),
-                           Point3f(x, y + 1, 0)});
-        idx.insert(idx.end(), {3 * i, 3 * i + 1, 3 * i + 2});
-    }
-    for (int i = 0; i < 10; ++i) {  // points
-        int base = int(p.size());
-        Point3f q(Float(i), 3.5f, 2);
-        p.insert(p.end(), {q, q, q});
-        idx.insert(idx.end(), {base, base + 1, base + 2});
-    }
-    scene.AddTriangles(p, idx);
-    for (int i = 0; i < 10; ++i) {
-        const Transform *a = scene.Keep(Translate(Vector3f(Float(i), 7, 0)));
-        const Transform *b = scene.Keep(Translate(Vector3f(-Float(i), -7, 0)));
-        scene.Add(std::make_shared<Disk>(a, b, false, 1.f, 0.4f, 0.f, 360.f));
-    }
-    std::mt19937_64 rng(612);
-    int failures = 0;
-    for (int leafSize : {1, 3, 16}) {
-        auto accels = AllAccelerators<BVHAccel>(scene.prims, leafSize);
-        auto fast = AllAccelerators<FastBVHAccel>(scene.prims, leafSize);
-        for (auto &f : fast) accels.push_back(std::move(f));
-        for (int i = 0; i < 3000; ++i) {
-            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
-            if (i % 3 == 0) {  // in the plane z = 0 or z = 1
-                ray.o.z = Float(i % 2);
-                ray.d.z = i % 6 == 0 ? Float(0) : -Float(0);
-                if (ray.d.LengthSquared() == 0) ray.d.x = 1;
-            }
-            Oracle o = BruteForce(scene.prims, ray);
-            for (auto &a : accels) {
-                std::string e = Compare(*a, ray, o);
-                if (!e.empty() && failures++ < kMaxFailuresReported)
-                    ADD_FAILURE() << ray << ": " << e;
-            }
-        }
-        // Straight down onto each flat triangle and disk.
-        for (auto &a : accels) {
-            Ray down(Point3f(3.25f, 2.25f, 5), Vector3f(0, 0, -1));
-            SurfaceInteraction si;
-            ASSERT_TRUE(a->Intersect(down, &si));
-            EXPECT_EQ(down.tMax, 5);
-            Ray disk(Point3f(4.1f, 7.1f, 5), Vector3f(0, 0, -1));
-            ASSERT_TRUE(a->Intersect(disk, &si));
-            EXPECT_NEAR(disk.tMax, 4, 1e-5f);
-        }
-    }
+    CheckZeroExtentBoxes(Plain(kPlainMethods));
 }
 
-// Primitives whose bounds are not finite, nonempty boxes are skipped: a
-// triangle mesh with a NaN vertex is refused by TriangleMesh itself, and a
-// primitive that reports a NaN, infinite or empty box (an empty aggregate,
-// for one) is left out of the tree and never hit.
+// A triangle mesh with a NaN vertex is refused by TriangleMesh itself.
 TEST(BVHDegenerate, NaNAndInfiniteBounds) {
     Transform id;
     int tri[3] = {0, 1, 2};
@@ -695,105 +960,12 @@ TEST(BVHDegenerate, NaNAndInfiniteBounds) {
     EXPECT_THROW(CreateTriangleMesh(&id, &id, false, 1, tri, 3, bad, nullptr,
                                     nullptr, nullptr),
                  std::invalid_argument);
-
-    Scene scene;
-    UnitSphereAt(scene, Point3f(0, 0, 5));
-    UnitSphereAt(scene, Point3f(3, 0, 5));
-    const Float nan = std::numeric_limits<Float>::quiet_NaN();
-    std::vector<std::shared_ptr<Primitive>> prims = scene.prims;
-    Bounds3f nanBox(Point3f(0, 0, 0), Point3f(1, 1, 1));
-    nanBox.pMax.y = nan;
-    Bounds3f infBox(Point3f(0, 0, 0), Point3f(Infinity, 1, 1));
-    Bounds3f hugeBox(Point3f(-MaxFloat, -MaxFloat, -MaxFloat),
-                     Point3f(MaxFloat, MaxFloat, MaxFloat));
-    prims.push_back(std::make_shared<OddBoundsPrimitive>(nanBox));
-    prims.push_back(std::make_shared<OddBoundsPrimitive>(infBox));
-    prims.push_back(std::make_shared<OddBoundsPrimitive>(Bounds3f()));
-    std::vector<std::shared_ptr<Primitive>> none;
-    prims.push_back(std::make_shared<BVHAccel>(none));
-    // A finite box at the limits of the range is kept (and its centroid
-    // must not overflow).
-    auto huge = std::make_shared<OddBoundsPrimitive>(hugeBox);
-    std::vector<std::shared_ptr<Primitive>> withHuge = prims;
-    withHuge.push_back(huge);
-    for (int leafSize : {1, 4}) {
-        for (SplitMethod m : kMethods) {
-            BVHAccel bvh(prims, leafSize, m);
-            FastBVHAccel fast(prims, leafSize, m);
-            CheckStructure(bvh, prims);
-            CheckStructure(fast, prims);
-            EXPECT_EQ(bvh.Primitives().size(), 2u);
-            EXPECT_EQ(fast.Primitives().size(), 2u);
-            for (const Primitive *a :
-                 {(const Primitive *)&bvh, (const Primitive *)&fast}) {
-                Ray ray(Point3f(0, 0, 0), Vector3f(0, 0, 1));
-                SurfaceInteraction si;
-                ASSERT_TRUE(a->Intersect(ray, &si));
-                EXPECT_NEAR(ray.tMax, 4, 1e-5f);  // the sphere, not t = 1
-                EXPECT_FALSE(a->IntersectP(Ray(Point3f(0, 0, 0),
-                                               Vector3f(0, 0, 1), 2)));
-            }
-            BVHAccel bvhHuge(withHuge, leafSize, m);
-            FastBVHAccel fastHuge(withHuge, leafSize, m);
-            CheckStructure(bvhHuge, withHuge);
-            CheckStructure(fastHuge, withHuge);
-            for (const Primitive *a :
-                 {(const Primitive *)&bvhHuge, (const Primitive *)&fastHuge}) {
-                Ray ray(Point3f(0, 0, 0), Vector3f(0, 0, 1));
-                SurfaceInteraction si;
-                ASSERT_TRUE(a->Intersect(ray, &si));
-                EXPECT_EQ(ray.tMax, 1);
-                EXPECT_EQ(si.primitive, huge.get());
-            }
-        }
-    }
+    CheckNaNAndInfiniteBounds(Plain(kPlainMethods));
 }
 
-// Centroids at 1, 1/2, 1/4, ...: Middle and the SAH split off one
-// primitive per level, which would make a chain far deeper than the
-// traversal stack. The depth bound keeps every tree within it.
 TEST(BVHDegenerate, ExponentiallySpacedCentroidsStayShallow) {
-    Scene scene;
-    std::vector<Point3f> p;
-    std::vector<int> idx;
-    int n = sizeof(Float) == 4 ? 140 : 1000;
-    for (int i = 0; i < n; ++i) {
-        Float x = std::ldexp(Float(1), -i);
-        Float h = x / 4;
-        int base = int(p.size());
-        p.insert(p.end(), {Point3f(x - h, -1, 0), Point3f(x + h, -1, 0),
-                           Point3f(x, 1, 0)});
-        idx.insert(idx.end(), {base, base + 1, base + 2});
-    }
-    scene.AddTriangles(p, idx);
-    std::mt19937_64 rng(613);
-    int failures = 0;
-    for (int leafSize : {1, 2}) {
-        for (SplitMethod m : kMethods) {
-            BVHAccel bvh(scene.prims, leafSize, m);
-            CheckStructure(bvh, scene.prims);
-            FastBVHAccel fast(scene.prims, leafSize, m);
-            CheckStructure(fast, scene.prims);
-            EXPECT_LE(bvh.Stats().maxDepth, maxBVHDepth);
-            EXPECT_LE(fast.Stats().maxDepth, maxBVHDepth);
-            for (int i = 0; i < 2000; ++i) {
-                Ray ray(Point3f(std::ldexp(Float(1), -int(rng() % n)) *
-                                    Float(U(rng, 0.8, 1.2)),
-                                Float(U(rng, -1, 1)), 1),
-                        Vector3f(0, 0, -1));
-                Oracle o = BruteForce(scene.prims, ray);
-                for (const Primitive *a :
-                     {(const Primitive *)&bvh, (const Primitive *)&fast}) {
-                    std::string e = Compare(*a, ray, o);
-                    if (!e.empty() && failures++ < kMaxFailuresReported)
-                        ADD_FAILURE() << MethodName(m) << " " << ray << ": "
-                                      << e;
-                }
-            }
-        }
-    }
+    CheckExponentiallySpacedCentroids(Plain(kPlainMethods));
 }
-
 // FastBVHAccel's triangle test is Triangle's, reorganized: on a single
 // triangle it must agree with Triangle::Intersect() bit for bit, including
 // rays aimed exactly at edges and vertices (which exercise the double
@@ -855,94 +1027,6 @@ TEST(FastBVHAccel, TriangleTestMatchesTriangleIntersect) {
     EXPECT_GT(hits, kTriangles * kRays / 4);
 }
 
-// The fast BVH over triangles gives bit for bit the hits of BVHAccel, on a
-// closed mesh (a subdivided octahedron) and rays from all directions.
-TEST(FastBVHAccel, SameHitsAsBVHAccelOnAClosedMesh) {
-    std::vector<Point3f> p = {Point3f(1, 0, 0),  Point3f(-1, 0, 0),
-                              Point3f(0, 1, 0),  Point3f(0, -1, 0),
-                              Point3f(0, 0, 1),  Point3f(0, 0, -1)};
-    std::vector<int> idx = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
-                            2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
-    for (int level = 0; level < 5; ++level) {  // 1-to-4 subdivision
-        std::vector<int> next;
-        std::map<std::pair<int, int>, int> mid;
-        auto midpoint = [&](int a, int b) {
-            auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            Vector3f m = Vector3f(p[a]) * Float(0.5) + Vector3f(p[b]) * Float(0.5);
-            p.push_back(Point3f(Normalize(m)));
-            return mid[key] = int(p.size()) - 1;
-        };
-        for (size_t t = 0; t < idx.size(); t += 3) {
-            int a = idx[t], b = idx[t + 1], c = idx[t + 2];
-            int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
-            next.insert(next.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc,
-                                     ca});
-        }
-        idx = next;
-    }
-    Scene scene;
-    scene.AddTriangles(p, idx);
-    std::mt19937_64 rng(615);
-    for (SplitMethod m : kMethods) {
-        BVHAccel bvh(scene.prims, 4, m);
-        FastBVHAccel fast(scene.prims, 8, m);
-        int hits = 0;
-        for (int i = 0; i < 20000; ++i) {
-            Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 3);
-            Ray ray(o, RandomPoint(rng, Point3f(0, 0, 0), 0.5) - o);
-            if (i % 3 == 0) ray.d = RandomDirection(rng);
-            Ray r1 = ray, r2 = ray;
-            SurfaceInteraction s1, s2;
-            bool h1 = bvh.Intersect(r1, &s1), h2 = fast.Intersect(r2, &s2);
-            ASSERT_EQ(h1, h2) << ray;
-            EXPECT_EQ(bvh.IntersectP(ray), h1);
-            EXPECT_EQ(fast.IntersectP(ray), h2);
-            if (h1) {
-                ++hits;
-                EXPECT_EQ(r1.tMax, r2.tMax) << ray;
-            }
-        }
-        // Rays aimed near the origin hit, unless they start inside.
-        EXPECT_GT(hits, 10000);
-    }
-}
-
-TEST(MortonCodes, LeftShift3SpreadsTheBits) {
-    for (uint32_t x = 0; x < 1024; ++x) {
-        uint32_t expected = 0;
-        for (int i = 0; i < 10; ++i)
-            if (x & (1u << i)) expected |= 1u << (3 * i);
-        ASSERT_EQ(LeftShift3(x), expected) << x;
-    }
-    EXPECT_EQ(LeftShift3(1024), LeftShift3(1023));
-    EXPECT_EQ(LeftShift3(0xffffffffu), LeftShift3(1023));
-}
-
-TEST(MortonCodes, EncodeInterleavesCoordinates) {
-    std::mt19937_64 rng(616);
-    for (int i = 0; i < 100000; ++i) {
-        Vector3f v(Float(U(rng, 0, 1024)), Float(U(rng, 0, 1024)),
-                   Float(U(rng, 0, 1024)));
-        uint32_t q[3];
-        for (int a = 0; a < 3; ++a)
-            q[a] = std::min(uint32_t(v[a]), uint32_t(1023));
-        uint32_t expected = 0;
-        for (int bit = 0; bit < 10; ++bit)
-            for (int a = 0; a < 3; ++a)
-                if (q[a] & (1u << bit)) expected |= 1u << (3 * bit + a);
-        ASSERT_EQ(EncodeMorton3(v), expected) << v;
-    }
-    const Float nan = std::numeric_limits<Float>::quiet_NaN();
-    EXPECT_EQ(QuantizeMorton(nan), 0u);
-    EXPECT_EQ(QuantizeMorton(-3), 0u);
-    EXPECT_EQ(QuantizeMorton(1024), 1023u);
-    EXPECT_EQ(QuantizeMorton(Infinity), 1023u);
-    EXPECT_EQ(QuantizeMorton(511.9f), 511u);
-    EXPECT_EQ(EncodeMorton3(Vector3f(1024, 1024, 1024)), (1u << 30) - 1);
-}
-
 TEST(BVHHelpers, IsFiniteBoxAndCeilLog2) {
     EXPECT_TRUE(IsFiniteBox(Bounds3f(Point3f(0, 0, 0))));
     EXPECT_TRUE(IsFiniteBox(Bounds3f(Point3f(-1, 2, 3), Point3f(4, 5, 6))));
@@ -980,13 +1064,291 @@ TEST(BVHHelpers, StatsSAHCost) {
     EXPECT_NEAR(fast.Stats().sahCost, 1 + 2 * 24.0 / 56.0, 1e-6);
 }
 
+// ---------------------------------------------------------------------------
+// Exercise 6.12: choosing the SAH split.
+
+TEST(Ex6_12_SAH, RandomScenes) {
+    RunRandomScenes(SAHSet, 601, kExerciseRandomScenes);
+}
+
+TEST(Ex6_12_SAH, DegenerateScenes) {
+    CheckAllCentroidsEqual(SAHSet);
+    CheckZeroExtentBoxes(SAHSet);
+    CheckNaNAndInfiniteBounds(SAHSet);
+    CheckExponentiallySpacedCentroids(SAHSet);
+}
+
+// Small scenes whose SAH decisions follow from the costs by hand (areas of
+// unit cubes and their unions; c_T = 1/8, c_I = 1).
+TEST(Ex6_12_SAH, SmallScenesWithKnownDecisions) {
+    // Cubes at 0, 1.5 and 10: splitting {0, 1.5} from {10} costs
+    // 1/8 + (2 * 12 + 1 * 6) / 46 = 0.777, splitting {0} from the rest
+    // 1/8 + (6 + 2 * 40) / 46 = 1.995, a leaf 3. The far cube is split off
+    // even though a leaf of three is allowed.
+    {
+        Prims prims = CubesAlongX({0, 1.5, 10});
+        BVHAccel bvh(prims, 3, SplitMethod::SAH);
+        CheckStructure(bvh, prims);
+        const auto &nodes = bvh.Nodes();
+        ASSERT_EQ(nodes.size(), 5u);
+        ASSERT_EQ(nodes[0].nPrimitives, 0);
+        const LinearBVHNode &far = nodes[nodes[0].secondChildOffset];
+        ASSERT_EQ(far.nPrimitives, 1);
+        EXPECT_EQ(far.bounds, prims[2]->WorldBound());
+        EXPECT_EQ(bvh.Primitives()[far.primitivesOffset], prims[2]);
+    }
+    // Cubes at 0, d and 2d: every split costs
+    // 1/8 + (6 + 2 (6 + 4d)) / (6 + 8d), which is 3.048 for d = 0.03 and
+    // 2.932 for d = 0.08, against 3 for a leaf.
+    for (int leafSize : {3, 4, 255}) {
+        Prims close = CubesAlongX({0, 0.03, 0.06});
+        BVHAccel leaf(close, leafSize, SplitMethod::SAH);
+        CheckStructure(leaf, close);
+        EXPECT_EQ(leaf.Nodes().size(), 1u)
+            << "three cubes 0.03 apart: a leaf costs 3, a split 3.048 "
+            << "(maxPrimsInNode " << leafSize << ")";
+        Prims apart = CubesAlongX({0, 0.08, 0.16});
+        BVHAccel split(apart, leafSize, SplitMethod::SAH);
+        CheckStructure(split, apart);
+        EXPECT_EQ(split.Nodes().size(), 5u)
+            << "three cubes 0.08 apart: a split costs 2.932, a leaf 3 "
+            << "(maxPrimsInNode " << leafSize << ")";
+    }
+    // A leaf that would hold more than maxPrimsInNode is no option.
+    for (int leafSize : {1, 2}) {
+        Prims close = CubesAlongX({0, 0.03, 0.06});
+        BVHAccel bvh(close, leafSize, SplitMethod::SAH);
+        CheckStructure(bvh, close);
+        EXPECT_EQ(bvh.Nodes().size(), 5u) << "maxPrimsInNode " << leafSize;
+    }
+    // Segments on the x axis: every box has zero area, so every split costs
+    // c_T, less than any leaf, and the tree is split down to single
+    // primitives even though one leaf could hold them all.
+    {
+        Prims segments;
+        for (int i = 0; i < 5; ++i)
+            segments.push_back(std::make_shared<BoxPrimitive>(
+                Bounds3f(Point3f(Float(2 * i), 0, 0),
+                         Point3f(Float(2 * i + 1), 0, 0))));
+        BVHAccel bvh(segments, 255, SplitMethod::SAH);
+        CheckStructure(bvh, segments);
+        BVHStats s = bvh.Stats();
+        EXPECT_EQ(s.leafNodes, 5) << "boxes of zero area";
+        EXPECT_EQ(s.maxLeafSize, 1);
+    }
+}
+
+// Random scenes of boxes (clustered, flat, on a line, repeated) and leaf
+// sizes; every decision of every tree is checked against the cost model.
+// The scenes must make the SAH decide many times, and choose leaves too.
+TEST(Ex6_12_SAH, DecisionsFollowTheCostModel) {
+    std::mt19937_64 rng(6121);
+    const int leafSizes[] = {1, 2, 3, 4, 6, 8, 16, 255};
+    SAHCheck total;
+    for (int scene = 0; scene < 1000; ++scene) {
+        int n = 3 + int(rng() % 40);
+        if (rng() % 6 == 0) n += int(rng() % 400);
+        Prims prims = RandomBoxes(rng, n);
+        int leafSize = leafSizes[rng() % 8];
+        BVHAccel bvh(prims, leafSize, SplitMethod::SAH);
+        CheckStructure(bvh, prims);
+        std::string name = "scene " + std::to_string(scene) + ", " +
+                           std::to_string(n) + " boxes, maxPrimsInNode " +
+                           std::to_string(leafSize);
+        SAHCheck c = CheckSAHChoices(bvh, name.c_str());
+        total.decisions += c.decisions;
+        total.leaves += c.leaves;
+        if (::testing::Test::HasFailure()) return;
+    }
+    EXPECT_GT(total.decisions, 20000);
+    EXPECT_GT(total.leaves, 400);
+}
+
+// ---------------------------------------------------------------------------
+// Exercise 6.13: sorting along the Morton curve.
+
+TEST(Ex6_13_MortonCodes, LeftShift3SpreadsTheBits) {
+    for (uint32_t x = 0; x < 1024; ++x) {
+        uint32_t expected = 0;
+        for (int i = 0; i < 10; ++i)
+            if (x & (1u << i)) expected |= 1u << (3 * i);
+        ASSERT_EQ(LeftShift3(x), expected) << x;
+    }
+    EXPECT_EQ(LeftShift3(1024), LeftShift3(1023));
+    EXPECT_EQ(LeftShift3(0xffffffffu), LeftShift3(1023));
+}
+
+TEST(Ex6_13_MortonCodes, EncodeInterleavesCoordinates) {
+    std::mt19937_64 rng(616);
+    for (int i = 0; i < 100000; ++i) {
+        Vector3f v(Float(U(rng, 0, 1024)), Float(U(rng, 0, 1024)),
+                   Float(U(rng, 0, 1024)));
+        uint32_t q[3];
+        for (int a = 0; a < 3; ++a)
+            q[a] = std::min(uint32_t(v[a]), uint32_t(1023));
+        uint32_t expected = 0;
+        for (int bit = 0; bit < 10; ++bit)
+            for (int a = 0; a < 3; ++a)
+                if (q[a] & (1u << bit)) expected |= 1u << (3 * bit + a);
+        ASSERT_EQ(EncodeMorton3(v), expected) << v;
+    }
+    const Float nan = std::numeric_limits<Float>::quiet_NaN();
+    EXPECT_EQ(QuantizeMorton(nan), 0u);
+    EXPECT_EQ(QuantizeMorton(-3), 0u);
+    EXPECT_EQ(QuantizeMorton(1024), 1023u);
+    EXPECT_EQ(QuantizeMorton(Infinity), 1023u);
+    EXPECT_EQ(QuantizeMorton(511.9f), 511u);
+    EXPECT_EQ(EncodeMorton3(Vector3f(1024, 1024, 1024)), (1u << 30) - 1);
+    EXPECT_EQ(EncodeMorton3(Vector3f(-1, nan, 2000)), 0x24924924u);
+}
+
+TEST(Ex6_13_HLBVH, RandomScenes) {
+    RunRandomScenes(HLBVHSet, 602, kExerciseRandomScenes);
+}
+
+TEST(Ex6_13_HLBVH, DegenerateScenes) {
+    CheckOnePrimitive(HLBVHSet);
+    CheckAllCentroidsEqual(HLBVHSet);
+    CheckZeroExtentBoxes(HLBVHSet);
+    CheckNaNAndInfiniteBounds(HLBVHSet);
+    CheckExponentiallySpacedCentroids(HLBVHSet);
+}
+
+// Scenes of up to a few thousand boxes, whose codes differ in every group
+// of bits that a pass of the radix sort handles, and scenes where many
+// codes coincide: the primitives of every tree must be in code order.
+TEST(Ex6_13_HLBVH, PrimitivesAreInMortonOrder) {
+    std::mt19937_64 rng(6131);
+    int distinct = 0;
+    for (int scene = 0; scene < 60; ++scene) {
+        int n = 1 + int(rng() % 100);
+        if (scene % 4 == 0) n += int(rng() % 3000);
+        Prims prims = RandomBoxes(rng, n);
+        if (scene % 3 == 0) std::reverse(prims.begin(), prims.end());
+        for (int leafSize : {1, 4, 255}) {
+            BVHAccel bvh(prims, leafSize, SplitMethod::HLBVH);
+            CheckStructure(bvh, prims);
+            std::string name = "scene " + std::to_string(scene) + ", " +
+                               std::to_string(n) + " boxes, maxPrimsInNode " +
+                               std::to_string(leafSize);
+            distinct += CheckMortonOrder(bvh, name.c_str());
+            if (::testing::Test::HasFailure()) return;
+        }
+    }
+    EXPECT_GT(distinct, 10000);
+}
+
+// ---------------------------------------------------------------------------
+// Exercise 6.14: near child first.
+
+TEST(Ex6_14_Traversal, RandomScenes) {
+    RunRandomScenes(kTraversalSet, 605, kExerciseRandomScenes);
+}
+
+TEST(Ex6_14_Traversal, DegenerateScenes) {
+    CheckAllCentroidsEqual(kTraversalSet);
+    CheckZeroExtentBoxes(kTraversalSet);
+    CheckNaNAndInfiniteBounds(kTraversalSet);
+    CheckExponentiallySpacedCentroids(kTraversalSet);
+}
+
+// Unit cubes in a row along an axis, 2 apart, each a primitive of a tree
+// with one primitive per leaf, whose nodes all split along that axis. A ray
+// along the row that visits the near child first tests only the cube it
+// meets first: after the hit, every other box lies behind the ray's tMax.
+// The other order tests every cube. Only the first cube is solid, so that
+// IntersectP() too tests more than one cube in the wrong order. The rays
+// drift slowly across the other two axes, in every combination of signs.
+TEST(Ex6_14_Traversal, NearChildFirstOnRowsOfCubes) {
+    std::vector<int> log;
+    for (int n : {2, 5, 16}) {
+        for (int axis = 0; axis < 3; ++axis) {
+            for (int sign : {1, -1}) {
+                int nearest = sign > 0 ? 0 : n - 1;
+                Prims prims;
+                for (int i = 0; i < n; ++i) {
+                    Point3f lo(0, 0, 0);
+                    lo[axis] = Float(2 * i);
+                    Point3f hi = lo + Vector3f(1, 1, 1);
+                    prims.push_back(std::make_shared<BoxPrimitive>(
+                        Bounds3f(lo, hi), i == nearest, &log, i));
+                }
+                for (SplitMethod m :
+                     {SplitMethod::Middle, SplitMethod::EqualCounts}) {
+                    BVHAccel bvh(prims, 1, m);
+                    CheckStructure(bvh, prims);
+                    for (int drift = 0; drift < 4; ++drift) {
+                        Point3f o(0.5f, 0.5f, 0.5f);
+                        o[axis] = sign > 0 ? Float(-5) : Float(2 * n + 4);
+                        Vector3f d(0, 0, 0);
+                        d[axis] = Float(sign);
+                        d[(axis + 1) % 3] = drift & 1 ? 0.01f : -0.01f;
+                        d[(axis + 2) % 3] = drift & 2 ? 0.01f : -0.01f;
+                        Ray ray(o, d);
+                        SCOPED_TRACE(::testing::Message()
+                                     << n << " cubes along axis " << axis
+                                     << ", " << MethodName(m) << ", ray "
+                                     << ray);
+                        log.clear();
+                        SurfaceInteraction si;
+                        ASSERT_TRUE(bvh.Intersect(ray, &si));
+                        EXPECT_EQ(si.primitive, prims[nearest].get());
+                        EXPECT_EQ(log, std::vector<int>{nearest})
+                            << "Intersect() tested these cubes";
+                        log.clear();
+                        EXPECT_TRUE(bvh.IntersectP(Ray(o, d)));
+                        EXPECT_EQ(log, std::vector<int>{nearest})
+                            << "IntersectP() tested these cubes";
+                    }
+                }
+            }
+        }
+    }
+}
+
+// The fast BVH over triangles gives bit for bit the hits of BVHAccel, on a
+// closed mesh (a subdivided octahedron) and rays from all directions.
+TEST(Ex6_14_Traversal, SameHitsAsFastBVHAccelOnAClosedMesh) {
+    std::vector<Point3f> p;
+    std::vector<int> idx;
+    ClosedMesh(5, &p, &idx);
+    Scene scene;
+    scene.AddTriangles(p, idx);
+    std::mt19937_64 rng(615);
+    for (SplitMethod m : {SplitMethod::Middle, SplitMethod::EqualCounts}) {
+        BVHAccel bvh(scene.prims, 4, m);
+        FastBVHAccel fast(scene.prims, 8, m);
+        int hits = 0;
+        for (int i = 0; i < 20000; ++i) {
+            Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 3);
+            Ray ray(o, RandomPoint(rng, Point3f(0, 0, 0), 0.5) - o);
+            if (i % 3 == 0) ray.d = RandomDirection(rng);
+            Ray r1 = ray, r2 = ray;
+            SurfaceInteraction s1, s2;
+            bool h1 = bvh.Intersect(r1, &s1), h2 = fast.Intersect(r2, &s2);
+            ASSERT_EQ(h1, h2) << ray;
+            EXPECT_EQ(bvh.IntersectP(ray), h1);
+            EXPECT_EQ(fast.IntersectP(ray), h2);
+            if (h1) {
+                ++hits;
+                EXPECT_EQ(r1.tMax, r2.tMax) << ray;
+            }
+        }
+        // Rays aimed near the origin hit, unless they start inside.
+        EXPECT_GT(hits, 10000);
+    }
+}
+
 // FastBVHAccel's nodes have four slots, and the unused ones hold an empty
 // box. A ray that is NaN on every axis passes every box test (a NaN never
 // rejects, Section 5.4), also the empty boxes, so for such rays the
 // traversal visits the unused slots too; they must be empty leaves, not
 // references to node 0, or the traversal would never end. Rays NaN on some
-// axes and rays with infinite components must give BVHAccel's answers.
-TEST(FastBVHAccel, RaysWithNaNAndInfinityEndAndAgreeWithBVHAccel) {
+// axes and rays with infinite components must get the same answer from
+// every tree. (The trees are FastBVHAccel's own SAH tree and the Middle and
+// EqualCounts trees it adopts, whose builders hold no exercise, so that
+// this test runs in the student edition too.)
+TEST(FastBVHAccel, RaysWithNaNAndInfinityEndAndAgreeAcrossTrees) {
     std::mt19937_64 rng(616);
     Scene scene;
     for (int i = 0; i < 300; ++i) {
@@ -1012,18 +1374,23 @@ TEST(FastBVHAccel, RaysWithNaNAndInfinityEndAndAgreeWithBVHAccel) {
         else o[axis] = nan;
         rays.push_back(Ray(o, d));
     }
-    for (SplitMethod m : kMethods) {
-        BVHAccel bvh(scene.prims, 4, m);
-        FastBVHAccel fast(scene.prims, 8, m);
-        for (const Ray &ray : rays) {
-            Ray r1 = ray, r2 = ray;
-            SurfaceInteraction s1, s2;
-            bool h1 = bvh.Intersect(r1, &s1), h2 = fast.Intersect(r2, &s2);
-            EXPECT_EQ(h1, h2) << ray;
-            EXPECT_EQ(bvh.IntersectP(ray), fast.IntersectP(ray)) << ray;
-            if (h1 && h2) {
-                EXPECT_TRUE(r1.tMax == r2.tMax ||
-                            (std::isnan(r1.tMax) && std::isnan(r2.tMax)))
+    FastBVHAccel sah(scene.prims, 8, SplitMethod::SAH);
+    FastBVHAccel middle(scene.prims, 4, SplitMethod::Middle);
+    FastBVHAccel equal(scene.prims, 2, SplitMethod::EqualCounts);
+    for (const Ray &ray : rays) {
+        Ray r[3] = {ray, ray, ray};
+        SurfaceInteraction si[3];
+        bool h[3] = {sah.Intersect(r[0], &si[0]),
+                     middle.Intersect(r[1], &si[1]),
+                     equal.Intersect(r[2], &si[2])};
+        bool p[3] = {sah.IntersectP(ray), middle.IntersectP(ray),
+                     equal.IntersectP(ray)};
+        for (int k = 1; k < 3; ++k) {
+            EXPECT_EQ(h[0], h[k]) << ray;
+            EXPECT_EQ(p[0], p[k]) << ray;
+            if (h[0] && h[k]) {
+                EXPECT_TRUE(r[0].tMax == r[k].tMax ||
+                            (std::isnan(r[0].tMax) && std::isnan(r[k].tMax)))
                     << ray;
             }
         }

@@ -160,7 +160,8 @@ TEST(TransformedPrimitive, DistancesAreComparableWithWorldSpace) {
     }
 }
 
-// Instances of an aggregate: a BVH over a small mesh, placed twice.
+// Instances of an aggregate: a BVH over a small mesh, placed twice. (A
+// FastBVHAccel: BVHAccel's traversal and SAH builder hold exercises.)
 TEST(TransformedPrimitive, InstancesOfAnAggregate) {
     Transform identity;
     std::vector<int> indices;
@@ -177,13 +178,13 @@ TEST(TransformedPrimitive, InstancesOfAnAggregate) {
                                      nullptr, nullptr, nullptr);
     std::vector<std::shared_ptr<Primitive>> prims;
     for (auto &s : shapes) prims.push_back(std::make_shared<GeometricPrimitive>(s));
-    auto model = std::make_shared<BVHAccel>(prims, 2);
+    auto model = std::make_shared<FastBVHAccel>(prims, 2);
     Transform t1 = Translate(Vector3f(-3, 0, 0)),
               t2 = Translate(Vector3f(3, 0, 0)) * RotateX(180);
     std::vector<std::shared_ptr<Primitive>> scene = {
         std::make_shared<TransformedPrimitive>(model, t1),
         std::make_shared<TransformedPrimitive>(model, t2)};
-    BVHAccel top(scene, 1);
+    FastBVHAccel top(scene, 1);
     Ray r1(Point3f(-3, 0, 5), Vector3f(0, 0, -1));
     SurfaceInteraction si;
     ASSERT_TRUE(top.Intersect(r1, &si));

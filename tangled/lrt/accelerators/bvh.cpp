@@ -250,8 +250,10 @@ BVHBuildNode *BVHAccel::recursiveBuild(
                     }
                 }
                 // Either create leaf or split primitives at selected SAH bucket
+                // Decide whether to split at the selected SAH bucket
                 Float leafCost = Float(nPrimitives);
-                if (nPrimitives > maxPrimsInNode || minCost < leafCost) {
+                bool splitHere = nPrimitives > maxPrimsInNode || minCost < leafCost;
+                if (splitHere) {
                     auto midIter = std::partition(
                         primitiveInfo.begin() + start, primitiveInfo.begin() + end,
                         [=](const BVHPrimitiveInfo &pi) {

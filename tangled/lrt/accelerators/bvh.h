@@ -32,6 +32,7 @@ inline int CeilLog2(int64_t n) {
 // BVH Constants and Inline Functions
 inline uint32_t LeftShift3(uint32_t x) {
     if (x > 1023) x = 1023;
+    // Spread the ten bits of x apart
     x = (x | (x << 16)) & 0x030000FF;  // 98 ........ 76543210
     x = (x | (x << 8)) & 0x0300F00F;   // 98 .... 7654 .... 3210
     x = (x | (x << 4)) & 0x030C30C3;   // 98 .. 76 .. 54 .. 32 .. 10
@@ -46,6 +47,7 @@ inline uint32_t QuantizeMorton(Float v) {
 }
 
 inline uint32_t EncodeMorton3(const Vector3f &v) {
+    // Interleave the quantized coordinates of v
     return (LeftShift3(QuantizeMorton(v.z)) << 2) |
            (LeftShift3(QuantizeMorton(v.y)) << 1) |
            LeftShift3(QuantizeMorton(v.x));

@@ -149,6 +149,37 @@ class Lint:
                            'one chapter: %s' % (name, ', '.join(paths)))
 
 
+LABEL_DEFINITION = re.compile(r'\{#((?:sec|fig|eq|tbl):[A-Za-z0-9_-]+)')
+LABEL_REFERENCE = re.compile(r'(?<![@\w])@((?:sec|fig|eq|tbl):[A-Za-z0-9_-]*[A-Za-z0-9])')
+
+
+def check_references(lint, paths):
+    """A reference to a label of a later chapter: a build or an exercise kit of
+    the chapters up to this one has no such label and could not weave. Name
+    the later chapter in words instead."""
+    defined = {}
+    texts = []
+    for order, path in enumerate(paths):
+        try:
+            with open(path, encoding='utf-8') as f:
+                text = f.read()
+        except OSError:
+            text = ''
+        texts.append(text)
+        for number, line in enumerate(text.splitlines(), 1):
+            for m in LABEL_DEFINITION.finditer(line):
+                defined.setdefault(m.group(1), (order, path, number))
+    for order, path in enumerate(paths):
+        for number, line in enumerate(texts[order].splitlines(), 1):
+            for m in LABEL_REFERENCE.finditer(line):
+                where = defined.get(m.group(1))
+                if where and where[0] > order:
+                    lint.error(path, number, 'reference to %s, which a later chapter '
+                               'defines (%s:%d): the chapters up to this one could not '
+                               'be woven without it; name that chapter in words'
+                               % (m.group(1), where[1], where[2]))
+
+
 CHAPTER_NAME = re.compile(r'^(\d\d)-[a-z0-9-]+\.md$')
 
 
@@ -179,6 +210,7 @@ def main(args):
         check_names(lint, paths)
     chapters = [lint.parse(path) for path in paths]
     lint.check_book(chapters)
+    check_references(lint, paths)
     for message in lint.errors:
         print(message, file=sys.stderr)
     if lint.errors:

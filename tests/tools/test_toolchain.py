@@ -73,6 +73,16 @@ class LintTest(unittest.TestCase):
                              'later-definition-a.md:5',
                              ['later chapter', 'later-definition-b.md:4'])
 
+    def test_reference_to_a_label_of_a_later_chapter(self):
+        # A kit of the chapters up to the first could not weave it.
+        self.assertLintError(['forward-ref-a.md', 'forward-ref-b.md'],
+                             'forward-ref-a.md:3',
+                             ['sec:second-tree', 'later chapter',
+                              'forward-ref-b.md:3'])
+        # The reference back to the first chapter is fine.
+        self.assertNotIn('forward-ref-b.md:5',
+                         lint('forward-ref-a.md', 'forward-ref-b.md').stderr)
+
     def test_chunk_outside_a_fence(self):
         self.assertLintError(['chunk-in-list.md'], 'chunk-in-list.md:4',
                              ['must follow a ```cpp fence'])

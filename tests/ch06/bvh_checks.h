@@ -11,7 +11,8 @@
 //                      precision at every node where the SAH decided;
 //   CheckMortonOrder   the order of an HLBVH tree's primitives along the
 //                      Morton curve, from codes interleaved bit by bit;
-//   BoxPrimitive       a box as a primitive, which can log the tests of it.
+//   BoxPrimitive       a box as a primitive, which can log the tests of it;
+//   ClosedMesh         a subdivided octahedron on the unit sphere.
 
 #pragma once
 
@@ -24,6 +25,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -372,5 +374,39 @@ class BoxPrimitive : public Primitive {
     std::vector<int> *log;
     int id;
 };
+
+// A closed mesh, for the public and the hidden tests: an octahedron
+// subdivided `levels` times (1-to-4), with its vertices on the unit
+// sphere.
+inline void ClosedMesh(int levels, std::vector<Point3f> *pOut,
+                       std::vector<int> *idxOut) {
+    std::vector<Point3f> p = {Point3f(1, 0, 0),  Point3f(-1, 0, 0),
+                              Point3f(0, 1, 0),  Point3f(0, -1, 0),
+                              Point3f(0, 0, 1),  Point3f(0, 0, -1)};
+    std::vector<int> idx = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
+                            2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+    for (int level = 0; level < levels; ++level) {  // 1-to-4 subdivision
+        std::vector<int> next;
+        std::map<std::pair<int, int>, int> mid;
+        auto midpoint = [&](int a, int b) {
+            auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            Vector3f m =
+                Vector3f(p[a]) * Float(0.5) + Vector3f(p[b]) * Float(0.5);
+            p.push_back(Point3f(Normalize(m)));
+            return mid[key] = int(p.size()) - 1;
+        };
+        for (size_t t = 0; t < idx.size(); t += 3) {
+            int a = idx[t], b = idx[t + 1], c = idx[t + 2];
+            int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+            next.insert(next.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc,
+                                     ca});
+        }
+        idx = next;
+    }
+    *pOut = p;
+    *idxOut = idx;
+}
 
 }  // namespace lrt_test

@@ -33,6 +33,7 @@ using namespace lrt;
 using lrt_test::BoxPrimitive;
 using lrt_test::CheckMortonOrder;
 using lrt_test::CheckSAHChoices;
+using lrt_test::ClosedMesh;
 using lrt_test::SAHCheck;
 using lrt_test::TreeWalker;
 using SplitMethod = BVHAccel::SplitMethod;
@@ -787,38 +788,6 @@ void CheckExponentiallySpacedCentroids(const AccelSet &set) {
     }
 }
 
-// A closed mesh: an octahedron subdivided `levels` times, on the unit
-// sphere.
-void ClosedMesh(int levels, std::vector<Point3f> *pOut,
-                std::vector<int> *idxOut) {
-    std::vector<Point3f> p = {Point3f(1, 0, 0),  Point3f(-1, 0, 0),
-                              Point3f(0, 1, 0),  Point3f(0, -1, 0),
-                              Point3f(0, 0, 1),  Point3f(0, 0, -1)};
-    std::vector<int> idx = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
-                            2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
-    for (int level = 0; level < levels; ++level) {  // 1-to-4 subdivision
-        std::vector<int> next;
-        std::map<std::pair<int, int>, int> mid;
-        auto midpoint = [&](int a, int b) {
-            auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            Vector3f m =
-                Vector3f(p[a]) * Float(0.5) + Vector3f(p[b]) * Float(0.5);
-            p.push_back(Point3f(Normalize(m)));
-            return mid[key] = int(p.size()) - 1;
-        };
-        for (size_t t = 0; t < idx.size(); t += 3) {
-            int a = idx[t], b = idx[t + 1], c = idx[t + 2];
-            int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
-            next.insert(next.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc,
-                                     ca});
-        }
-        idx = next;
-    }
-    *pOut = p;
-    *idxOut = idx;
-}
 
 // Random boxes for the tests of the SAH and HLBVH trees: in a cube, in
 // clusters, on a plane (boxes flat in z), on a line (segments along x, of

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -271,7 +272,7 @@ using AccelSlot = std::shared_ptr<std::unique_ptr<Accel>>;
 
 template <typename Accel, typename Make>
 void RegisterBuild(const std::string &name, AccelSlot<Accel> slot,
-                   Make make, int repetitions) {
+                   Make make) {
     benchmark::RegisterBenchmark(
         name.c_str(),
         [slot, make](benchmark::State &state) {
@@ -285,14 +286,12 @@ void RegisterBuild(const std::string &name, AccelSlot<Accel> slot,
             state.counters["depth"] = s.maxDepth;
         })
         ->Iterations(1)
-        ->Repetitions(repetitions)
-        ->ReportAggregatesOnly(true)
         ->Unit(benchmark::kMillisecond);
 }
 // BVH Benchmark Measurement Functions
 template <typename Accel>
 void RegisterTrace(const std::string &name, AccelSlot<Accel> slot,
-                   const RaySet &rays, int passes) {
+                   const RaySet &rays) {
     benchmark::RegisterBenchmark(
         name.c_str(),
         [slot, &rays](benchmark::State &state) {
@@ -308,8 +307,6 @@ void RegisterTrace(const std::string &name, AccelSlot<Accel> slot,
             state.counters["sum_t"] = r.sumT;
         })
         ->Iterations(1)
-        ->Repetitions(passes)
-        ->ReportAggregatesOnly(true)
         ->Unit(benchmark::kMillisecond);
 }
 // BVH Benchmark Measurement Functions
@@ -319,6 +316,12 @@ std::string BenchName(const BenchMesh &mesh, SplitMethod method,
                       const std::string &version, const std::string &what) {
     return mesh.name + "/" + MethodName(method) + "/" + version + "/" + what;
 }
+
+const char roundTag[] = "/round:";
+
+std::string RoundName(const std::string &name, int round) {
+    return name + roundTag + std::to_string(round + 1);
+}
 // BVH Benchmark Measurement Functions
 void RunGroup(const BenchMesh &mesh, SplitMethod method,
               const std::vector<RaySet> &raySets, const BenchOptions &opt,
@@ -326,34 +329,41 @@ void RunGroup(const BenchMesh &mesh, SplitMethod method,
     auto first = std::make_shared<std::unique_ptr<BVHAccel>>();
     auto adopted = std::make_shared<std::unique_ptr<FastBVHAccel>>();
     auto final = std::make_shared<std::unique_ptr<FastBVHAccel>>();
-    RegisterBuild(BenchName(mesh, method, "first", "build"), first, [&] {
-        return std::make_unique<BVHAccel>(mesh.prims, opt.firstLeafSize,
-                                          method);
-    }, opt.buildRepetitions);
-    RegisterBuild(BenchName(mesh, method, "adopted", "build"), adopted, [=] {
-        return std::make_unique<FastBVHAccel>(**first);
-    }, opt.buildRepetitions);
     int finalLeafSize = method == SplitMethod::SAH ? opt.finalLeafSize
                                                    : opt.firstLeafSize;
-    RegisterBuild(BenchName(mesh, method, "final", "build"), final, [=, &mesh] {
-        return std::make_unique<FastBVHAccel>(mesh.prims, finalLeafSize,
+    for (int r = 0; r < opt.buildRepetitions; ++r) {
+        auto name = [&](const char *version) {
+            return RoundName(BenchName(mesh, method, version, "build"), r);
+        };
+        RegisterBuild(name("first"), first, [&] {
+            return std::make_unique<BVHAccel>(mesh.prims, opt.firstLeafSize,
                                               method);
-    }, opt.buildRepetitions);
-    for (const RaySet &rays : raySets) {
-        RegisterTrace(BenchName(mesh, method, "first", rays.name), first,
-                      rays, opt.passes);
-        RegisterTrace(BenchName(mesh, method, "adopted", rays.name), adopted,
-                      rays, opt.passes);
-        RegisterTrace(BenchName(mesh, method, "final", rays.name), final,
-                      rays, opt.passes);
+        });
+        RegisterBuild(name("adopted"), adopted, [=] {
+            return std::make_unique<FastBVHAccel>(**first);
+        });
+        RegisterBuild(name("final"), final, [=, &mesh] {
+            return std::make_unique<FastBVHAccel>(mesh.prims, finalLeafSize,
+                                                  method);
+        });
     }
+    for (const RaySet &rays : raySets)
+        for (int r = 0; r < opt.passes; ++r) {
+            auto name = [&](const char *version) {
+                return RoundName(BenchName(mesh, method, version, rays.name),
+                                 r);
+            };
+            RegisterTrace(name("first"), first, rays);
+            RegisterTrace(name("adopted"), adopted, rays);
+            RegisterTrace(name("final"), final, rays);
+        }
     benchmark::RunSpecifiedBenchmarks(reporter);
     benchmark::ClearRegisteredBenchmarks();
 }
 // BVH Benchmark Reporter
-struct Median {
-    double cpuMs = 0;
-    std::map<std::string, double> counters;
+struct Rounds {
+    std::vector<double> cpuMs;
+    std::map<std::string, std::vector<double>> counters;
 };
 
 class BenchReporter : public benchmark::ConsoleReporter {
@@ -366,24 +376,59 @@ class BenchReporter : public benchmark::ConsoleReporter {
     void ReportRuns(const std::vector<Run> &runs) override {
         ConsoleReporter::ReportRuns(runs);
         for (const Run &run : runs) {
-            bool median = run.run_type == Run::RT_Aggregate &&
-                          run.aggregate_name == "median";
-            bool single = run.run_type == Run::RT_Iteration &&
-                          run.repetitions <= 1;
-            if (!median && !single) continue;
-            Median &m = medians[run.run_name.function_name];
-            m.cpuMs = run.GetAdjustedCPUTime();
-            for (const auto &c : run.counters) m.counters[c.first] = c.second;
+            if (run.run_type != Run::RT_Iteration || run.error_occurred)
+                continue;
+            std::string name = run.run_name.function_name;
+            name = name.substr(0, name.rfind(roundTag));
+            Rounds &r = rounds[name];
+            r.cpuMs.push_back(run.GetAdjustedCPUTime());
+            for (const auto &c : run.counters)
+                r.counters[c.first].push_back(c.second);
         }
     }
-    const Median *Find(const std::string &name) const {
-        auto it = medians.find(name);
-        return it == medians.end() ? nullptr : &it->second;
+    // BenchReporter Summaries
+    struct Median {
+        double cpuMs = 0;
+        std::map<std::string, double> counters;
+    };
+
+    std::optional<Median> Find(const std::string &name) const {
+        auto it = rounds.find(name);
+        if (it == rounds.end()) return std::nullopt;
+        Median m;
+        m.cpuMs = MedianOf(it->second.cpuMs);
+        for (const auto &c : it->second.counters)
+            m.counters[c.first] = MedianOf(c.second);
+        return m;
+    }
+
+    std::optional<double> PairedRatio(const std::string &numerator,
+                                      const std::string &denominator,
+                                      const std::string &counter) const {
+        auto a = rounds.find(numerator), b = rounds.find(denominator);
+        if (a == rounds.end() || b == rounds.end()) return std::nullopt;
+        const std::vector<double> &x = counter.empty()
+                                           ? a->second.cpuMs
+                                           : a->second.counters.at(counter);
+        const std::vector<double> &y = counter.empty()
+                                           ? b->second.cpuMs
+                                           : b->second.counters.at(counter);
+        std::vector<double> ratios;
+        for (size_t i = 0; i < std::min(x.size(), y.size()); ++i)
+            ratios.push_back(x[i] / y[i]);
+        if (ratios.empty()) return std::nullopt;
+        return MedianOf(ratios);
+    }
+
+    static double MedianOf(std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        size_t n = v.size();
+        return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
     }
 
   private:
     bool contextShown = false;
-    std::map<std::string, Median> medians;
+    std::map<std::string, Rounds> rounds;
 };
 // BVH Benchmark Output Functions
 const char *ReferenceCheck(const std::string &mesh, const std::string &rays,
@@ -409,7 +454,7 @@ void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
         // Print the tree statistics of every method and version
         for (SplitMethod m : opt.methods)
             for (const char *v : versionNames) {
-                const Median *b = rep.Find(BenchName(*mesh, m, v, "build"));
+                auto b = rep.Find(BenchName(*mesh, m, v, "build"));
                 if (!b) continue;
                 auto c = b->counters;
                 std::printf("%-12s %-8s %9.1f %9.0f %8.0f %5.2f %7.2f %5.0f\n",
@@ -423,7 +468,7 @@ void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
             // Print the tracing results of every method and version
             for (SplitMethod m : opt.methods)
                 for (const char *v : versionNames) {
-                    const Median *t = rep.Find(BenchName(*mesh, m, v, rays.name));
+                    auto t = rep.Find(BenchName(*mesh, m, v, rays.name));
                     if (!t) continue;
                     auto c = t->counters;
                     std::printf("%-12s %-8s %9.3f %9.0f %14.6e %6s\n", MethodName(m), v,
@@ -432,19 +477,20 @@ void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
                 }
         }
         // Print the ratios of the final version to the first
-        std::printf("final / first: throughput on each ray set; build time\n");
+        std::printf("final / first: throughput on each ray set; build time "
+                    "(medians of the rounds' ratios)\n");
         for (SplitMethod m : opt.methods) {
             std::printf("%-12s", MethodName(m));
-            for (const RaySet &rays : raySets) {
-                const Median *f = rep.Find(BenchName(*mesh, m, "first", rays.name));
-                const Median *l = rep.Find(BenchName(*mesh, m, "final", rays.name));
-                if (f && l)
-                    std::printf(" %s %.2fx", rays.name.c_str(),
-                                l->counters.at("Mrays/s") / f->counters.at("Mrays/s"));
-            }
-            const Median *bf = rep.Find(BenchName(*mesh, m, "first", "build"));
-            const Median *bl = rep.Find(BenchName(*mesh, m, "final", "build"));
-            if (bf && bl) std::printf(" build %.2fx", bl->cpuMs / bf->cpuMs);
+            auto name = [&](const char *v, const std::string &what) {
+                return BenchName(*mesh, m, v, what);
+            };
+            for (const RaySet &rays : raySets)
+                if (auto r = rep.PairedRatio(name("final", rays.name),
+                                             name("first", rays.name), "Mrays/s"))
+                    std::printf(" %s %.2fx", rays.name.c_str(), *r);
+            if (auto r = rep.PairedRatio(name("final", "build"),
+                                         name("first", "build"), ""))
+                std::printf(" build %.2fx", *r);
             std::printf("\n");
         }
     }
@@ -464,7 +510,7 @@ void WriteJSON(const std::string &filename,
         for (SplitMethod m : opt.methods)
             for (const char *v : versionNames) {
                 // Write the JSON record of one tree and its ray sets
-                const Median *b = rep.Find(BenchName(*mesh, m, v, "build"));
+                auto b = rep.Find(BenchName(*mesh, m, v, "build"));
                 if (!b) continue;
                 js.precision(10);
                 js << sep << "    {\"mesh\": \"" << mesh->name << "\", \"triangles\": "
@@ -475,7 +521,7 @@ void WriteJSON(const std::string &filename,
                 js << ", \"rays\": {";
                 const char *raySep = "";
                 for (const RaySet &rays : raySets) {
-                    const Median *t = rep.Find(BenchName(*mesh, m, v, rays.name));
+                    auto t = rep.Find(BenchName(*mesh, m, v, rays.name));
                     if (!t) continue;
                     js << raySep << "\"" << rays.name << "\": {\"mrays_per_s\": "
                        << t->counters.at("Mrays/s") << ", \"hits\": "

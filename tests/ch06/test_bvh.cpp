@@ -1365,3 +1365,46 @@ TEST(FastBVHAccel, RaysWithNaNAndInfinityEndAndAgreeAcrossTrees) {
         }
     }
 }
+
+// FastBVHAccel traverses with one instance of its loop per octant of the
+// ray's direction, each with the near and far planes of its octant built in
+// (chapter 6, "Fast Traversal"). Every octant, with zero components of either sign (whose
+// sign the reciprocal decides), must find what brute force finds.
+TEST(FastBVHAccel, EveryOctantWithSignedZerosAgreesWithBruteForce) {
+    std::mt19937_64 rng(6177);
+    const Float magnitudes[] = {0, Float(0.25), 1};
+    int hitsPerOctant[8] = {};
+    for (int sceneIndex = 0; sceneIndex < 20; ++sceneIndex) {
+        Scene scene = RandomScene(rng);
+        FastBVHAccel sah(scene.prims, 8, SplitMethod::SAH);
+        FastBVHAccel middle(scene.prims, 4, SplitMethod::Middle);
+        for (int octant = 0; octant < 8; ++octant)
+            for (Float mx : magnitudes)
+                for (Float my : magnitudes)
+                    for (Float mz : magnitudes) {
+                        if (mx == 0 && my == 0 && mz == 0) continue;
+                        // Negative zero where the octant says negative.
+                        Vector3f d(octant & 1 ? -mx : mx,
+                                   octant & 2 ? -my : my,
+                                   octant & 4 ? -mz : mz);
+                        Ray ray = RandomRay(rng, scene.bounds);
+                        // Aim the ray's line near the scene's centre.
+                        Point3f c = scene.bounds.pMin * Float(0.5) +
+                                    scene.bounds.pMax * Float(0.5);
+                        double r = scene.bounds.Diagonal().Length() / 2;
+                        ray.o = RandomPoint(rng, c, 0.4 * r) -
+                                Normalize(d) * Float(U(rng, 0, 3 * r));
+                        ray.d = d;
+                        Oracle o = BruteForce(scene.prims, ray);
+                        if (!o.hits.empty()) ++hitsPerOctant[octant];
+                        for (const FastBVHAccel *a : {&sah, &middle}) {
+                            std::string e = Compare(*a, ray, o);
+                            EXPECT_TRUE(e.empty())
+                                << "octant " << octant << ", ray " << ray
+                                << ": " << e;
+                        }
+                    }
+    }
+    for (int octant = 0; octant < 8; ++octant)
+        EXPECT_GT(hitsPerOctant[octant], 50) << "octant " << octant;
+}

@@ -80,14 +80,7 @@ struct FastRay {
         ix = 1 / ray.d.x;
         iy = 1 / ray.d.y;
         iz = 1 / ray.d.z;
-        // Compute the offsets of the near and far planes in a node
-        const int w = fastBVHWidth;
-        nearX = (ix < 0) * w;
-        nearY = (2 + (iy < 0)) * w;
-        nearZ = (4 + (iz < 0)) * w;
-        farX = (ix >= 0) * w;
-        farY = (2 + (iy >= 0)) * w;
-        farZ = (4 + (iz >= 0)) * w;
+        octant = (ix < 0) | (iy < 0) << 1 | (iz < 0) << 2;
         o[0] = ox;
         o[1] = oy;
         o[2] = oz;
@@ -103,7 +96,7 @@ struct FastRay {
         Sz = 1 / d.z;
     }
     Float ox, oy, oz, ix, iy, iz;
-    int nearX, nearY, nearZ, farX, farY, farZ;
+    int octant;
     Float o[3];
     int kx, ky, kz;
     Float Sx, Sy, Sz;
@@ -240,13 +233,19 @@ static inline bool IntersectTriangle(const FastTriangle &tri,
     return true;
 }
 // FastBVHAccel Traversal Function
-template <typename LeafVisitor>
-static void TraverseFastBVH(const FastBVHNode *nodes,
-                            const FastTriangle *triangles,
-                            FastBVHChild root, const FastBVHNode &rootNode,
-                            const Ray &ray, const FastRay &fr,
-                            LeafVisitor visitLeaf) {
+template <int octant, typename LeafVisitor>
+static void TraverseFastBVHOctant(const FastBVHNode *nodes,
+                                  const FastTriangle *triangles,
+                                  FastBVHChild root,
+                                  const FastBVHNode &rootNode,
+                                  const Ray &ray, const FastRay &fr,
+                                  LeafVisitor &visitLeaf) {
     const FastRay r = fr;
+    // Compute the offsets of the near and far planes in a node
+    constexpr int w = fastBVHWidth;
+    constexpr int nearX = (octant & 1) * w, farX = w - nearX;
+    constexpr int nearY = (2 + (octant >> 1 & 1)) * w, farY = 5 * w - nearY;
+    constexpr int nearZ = (4 + (octant >> 2 & 1)) * w, farZ = 9 * w - nearZ;
     {
         const FastBVHNode &node = rootNode;
         // Intersect the ray with the child boxes of node
@@ -256,12 +255,12 @@ static void TraverseFastBVH(const FastBVHNode *nodes,
             const Float *b = &node.bounds[0][0][0];
             Float t1[fastBVHWidth];
             for (int c = 0; c < fastBVHWidth; ++c) {
-                Float tx0 = (b[r.nearX + c] - r.ox) * r.ix;
-                Float tx1 = (b[r.farX + c] - r.ox) * r.ix;
-                Float ty0 = (b[r.nearY + c] - r.oy) * r.iy;
-                Float ty1 = (b[r.farY + c] - r.oy) * r.iy;
-                Float tz0 = (b[r.nearZ + c] - r.oz) * r.iz;
-                Float tz1 = (b[r.farZ + c] - r.oz) * r.iz;
+                Float tx0 = (b[nearX + c] - r.ox) * r.ix;
+                Float tx1 = (b[farX + c] - r.ox) * r.ix;
+                Float ty0 = (b[nearY + c] - r.oy) * r.iy;
+                Float ty1 = (b[farY + c] - r.oy) * r.iy;
+                Float tz0 = (b[nearZ + c] - r.oz) * r.iz;
+                Float tz1 = (b[farZ + c] - r.oz) * r.iz;
                 t[c] = std::max(std::max(std::max(Float(0), tx0), ty0), tz0);
                 t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1) *
                         (1 + 2 * gamma(3));
@@ -292,12 +291,12 @@ static void TraverseFastBVH(const FastBVHNode *nodes,
                 const Float *b = &node.bounds[0][0][0];
                 Float t1[fastBVHWidth];
                 for (int c = 0; c < fastBVHWidth; ++c) {
-                    Float tx0 = (b[r.nearX + c] - r.ox) * r.ix;
-                    Float tx1 = (b[r.farX + c] - r.ox) * r.ix;
-                    Float ty0 = (b[r.nearY + c] - r.oy) * r.iy;
-                    Float ty1 = (b[r.farY + c] - r.oy) * r.iy;
-                    Float tz0 = (b[r.nearZ + c] - r.oz) * r.iz;
-                    Float tz1 = (b[r.farZ + c] - r.oz) * r.iz;
+                    Float tx0 = (b[nearX + c] - r.ox) * r.ix;
+                    Float tx1 = (b[farX + c] - r.ox) * r.ix;
+                    Float ty0 = (b[nearY + c] - r.oy) * r.iy;
+                    Float ty1 = (b[farY + c] - r.oy) * r.iy;
+                    Float tz0 = (b[nearZ + c] - r.oz) * r.iz;
+                    Float tz1 = (b[farZ + c] - r.oz) * r.iz;
                     t[c] = std::max(std::max(std::max(Float(0), tx0), ty0), tz0);
                     t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1) *
                             (1 + 2 * gamma(3));
@@ -362,6 +361,28 @@ static void TraverseFastBVH(const FastBVHNode *nodes,
         } while (stack[stackSize].tEntry > ray.tMax * (1 + 2 * gamma(3)));
         current = stack[stackSize].child;
     }
+}
+// FastBVHAccel Traversal Function
+template <typename LeafVisitor>
+static void TraverseFastBVH(const FastBVHNode *nodes,
+                            const FastTriangle *triangles,
+                            FastBVHChild root, const FastBVHNode &rootNode,
+                            const Ray &ray, const FastRay &fr,
+                            LeafVisitor visitLeaf) {
+    using Instance = void (*)(const FastBVHNode *, const FastTriangle *,
+                              FastBVHChild, const FastBVHNode &, const Ray &,
+                              const FastRay &, LeafVisitor &);
+    static constexpr Instance instances[8] = {
+        TraverseFastBVHOctant<0, LeafVisitor>,
+        TraverseFastBVHOctant<1, LeafVisitor>,
+        TraverseFastBVHOctant<2, LeafVisitor>,
+        TraverseFastBVHOctant<3, LeafVisitor>,
+        TraverseFastBVHOctant<4, LeafVisitor>,
+        TraverseFastBVHOctant<5, LeafVisitor>,
+        TraverseFastBVHOctant<6, LeafVisitor>,
+        TraverseFastBVHOctant<7, LeafVisitor>};
+    instances[fr.octant](nodes, triangles, root, rootNode, ray, fr,
+                         visitLeaf);
 }
 // FastBVHAccel Method Definitions
 FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
@@ -627,7 +648,7 @@ bool FastBVHAccel::Intersect(const Ray &ray,
                 ray.tMax = hit.t;
                 closest = hit;
                 hitTriangle = leaf.offset + i;
-                LRT_PREFETCH(&refs[hitTriangle]);
+                LRT_PREFETCH(refs[hitTriangle].triangle);
             }
         }
         for (int i = 0; i < leaf.nOthers; ++i) {

@@ -352,7 +352,7 @@ Bounds3f BoxOf(const FastBVHNode &n, int c) {
 // first.
 void CheckStructure(const FastBVHAccel &bvh,
                     const std::vector<std::shared_ptr<Primitive>> &input) {
-    const std::vector<FastBVHNode> &nodes = bvh.Nodes();
+    const auto &nodes = bvh.Nodes();
     const auto &prims = bvh.Primitives();
     const auto &tris = bvh.Triangles();
     std::multiset<const Primitive *> got;
@@ -1407,4 +1407,38 @@ TEST(FastBVHAccel, EveryOctantWithSignedZerosAgreesWithBruteForce) {
     }
     for (int octant = 0; octant < 8; ++octant)
         EXPECT_GT(hitsPerOctant[octant], 50) << "octant " << octant;
+}
+
+// FastBVHAccel keeps its nodes, triangles and references in LargeArrays
+// (chapter 6, "Pages of Memory"): on Linux an array of 8 MB (four large
+// pages) or more is aligned to 2 MB, so that the kernel can map it with
+// large pages; smaller arrays, and all arrays elsewhere, have their type's
+// alignment. Growing an array across the threshold keeps its contents.
+TEST(LargeArray, AlignmentAndGrowthAcrossTheThreshold) {
+    const size_t largePage = size_t(2) << 20, threshold = 4 * largePage;
+    auto address = [](const void *p) { return reinterpret_cast<uintptr_t>(p); };
+    LargeArray<FastBVHNode> small(3);
+    EXPECT_EQ(address(small.data()) % alignof(FastBVHNode), 0u);
+    LargeArray<FastBVHNode> big(threshold / sizeof(FastBVHNode) + 1);
+    EXPECT_EQ(address(big.data()) % alignof(FastBVHNode), 0u);
+#if defined(__linux__)
+    EXPECT_EQ(address(big.data()) % largePage, 0u);
+#endif
+    LargeArray<FastTriangle> tris;
+    size_t n = 3 * threshold / sizeof(FastTriangle);
+    for (size_t i = 0; i < n; ++i) {
+        FastTriangle t;
+        for (int j = 0; j < 3; ++j)
+            for (int a = 0; a < 3; ++a) t.v[j][a] = Float(i % 1000 + 3 * j + a);
+        tris.push_back(t);
+    }
+    ASSERT_EQ(tris.size(), n);
+    for (size_t i = 0; i < n; i += 997)
+        ASSERT_EQ(tris[i].v[2][1], Float(i % 1000 + 7)) << i;
+#if defined(__linux__)
+    EXPECT_EQ(address(tris.data()) % largePage, 0u);
+#endif
+    tris.resize(10);
+    tris.shrink_to_fit();
+    EXPECT_EQ(tris[9].v[0][0], Float(9));
 }

@@ -7,12 +7,39 @@
 #include "lrt/core/primitive.h"
 #include "lrt/shapes/triangle.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <vector>
 
 namespace lrt {
 
+// Large Array Declarations
+void *AllocateLargeArray(size_t bytes, size_t alignment);
+void FreeLargeArray(void *p, size_t bytes, size_t alignment);
+
+template <typename T>
+struct LargeArrayAllocator {
+    using value_type = T;
+    LargeArrayAllocator() = default;
+    template <typename U>
+    LargeArrayAllocator(const LargeArrayAllocator<U> &) {}
+    T *allocate(size_t n) {
+        if (n > size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
+        return static_cast<T *>(AllocateLargeArray(n * sizeof(T), alignof(T)));
+    }
+    void deallocate(T *p, size_t n) {
+        FreeLargeArray(p, n * sizeof(T), alignof(T));
+    }
+    template <typename U>
+    bool operator==(const LargeArrayAllocator<U> &) const { return true; }
+    template <typename U>
+    bool operator!=(const LargeArrayAllocator<U> &) const { return false; }
+};
+
+template <typename T>
+using LargeArray = std::vector<T, LargeArrayAllocator<T>>;
 struct FastBVHBuildPrim;
 struct FastBVHBuildNode;
 struct FastBox;
@@ -56,12 +83,12 @@ class FastBVHAccel : public Aggregate {
     bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override;
     bool IntersectP(const Ray &ray) const override;
     // FastBVHAccel Public Methods
-    const std::vector<FastBVHNode> &Nodes() const { return nodes; }
+    const LargeArray<FastBVHNode> &Nodes() const { return nodes; }
     FastBVHChild Root() const { return root; }
     const std::vector<std::shared_ptr<Primitive>> &Primitives() const {
         return primitives;
     }
-    const std::vector<FastTriangle> &Triangles() const { return triangles; }
+    const LargeArray<FastTriangle> &Triangles() const { return triangles; }
     int MaxPrimsInNode() const { return maxPrimsInNode; }
     BVHStats Stats() const;
   private:
@@ -82,9 +109,9 @@ class FastBVHAccel : public Aggregate {
     // FastBVHAccel Private Data
     int maxPrimsInNode;
     std::vector<std::shared_ptr<Primitive>> primitives;
-    std::vector<FastPrimitiveRef> refs;
-    std::vector<FastTriangle> triangles;
-    std::vector<FastBVHNode> nodes;
+    LargeArray<FastPrimitiveRef> refs;
+    LargeArray<FastTriangle> triangles;
+    LargeArray<FastBVHNode> nodes;
     FastBVHChild root = {0, 0, 0};
     FastBVHNode rootNode = {};
 };

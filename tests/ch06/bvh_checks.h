@@ -27,12 +27,29 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <random>
 #include <utility>
 #include <vector>
 
 namespace lrt_test {
 
 using namespace lrt;
+
+// A uniform random number in [a, b).
+inline double U(std::mt19937_64 &rng, double a, double b) {
+    return std::uniform_real_distribution<double>(a, b)(rng);
+}
+
+// A uniformly distributed unit vector (a normalized Gaussian vector).
+inline Vector3f RandomDirection(std::mt19937_64 &rng) {
+    std::normal_distribution<double> n(0, 1);
+    for (;;) {
+        double x = n(rng), y = n(rng), z = n(rng);
+        double l = std::sqrt(x * x + y * y + z * z);
+        if (l > 1e-3)
+            return Vector3f(Float(x / l), Float(y / l), Float(z / l));
+    }
+}
 
 // Traces the tree of a BVHAccel from its nodes and ordered primitives: a
 // stack of node indices, both children of every node whose box the ray

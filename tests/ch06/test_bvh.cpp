@@ -36,6 +36,8 @@ using lrt_test::CheckSAHChoices;
 using lrt_test::ClosedMesh;
 using lrt_test::SAHCheck;
 using lrt_test::TreeWalker;
+using lrt_test::RandomDirection;
+using lrt_test::U;
 using SplitMethod = BVHAccel::SplitMethod;
 
 namespace {
@@ -79,20 +81,6 @@ struct Scene {
         for (auto &t : tris) Add(t);
     }
 };
-
-double U(std::mt19937_64 &rng, double a, double b) {
-    return std::uniform_real_distribution<double>(a, b)(rng);
-}
-
-Vector3f RandomDirection(std::mt19937_64 &rng) {
-    std::normal_distribution<double> n(0, 1);
-    for (;;) {
-        double x = n(rng), y = n(rng), z = n(rng);
-        double l = std::sqrt(x * x + y * y + z * z);
-        if (l > 1e-3)
-            return Vector3f(Float(x / l), Float(y / l), Float(z / l));
-    }
-}
 
 Point3f RandomPoint(std::mt19937_64 &rng, const Point3f &c, double r) {
     return Point3f(Float(c.x + U(rng, -r, r)), Float(c.y + U(rng, -r, r)),

@@ -44,6 +44,8 @@ using lrt_test::ClosedMesh;
 using lrt_test::ReferenceMortonCode;
 using lrt_test::SAHCheck;
 using lrt_test::TreeWalker;
+using lrt_test::RandomDirection;
+using lrt_test::U;
 using SplitMethod = BVHAccel::SplitMethod;
 
 namespace {
@@ -51,23 +53,9 @@ namespace {
 using Prims = std::vector<std::shared_ptr<Primitive>>;
 const Float kTieTolerance = 256 * std::numeric_limits<Float>::epsilon();
 
-double U(std::mt19937_64 &rng, double a, double b) {
-    return std::uniform_real_distribution<double>(a, b)(rng);
-}
-
 Point3f RandomPoint(std::mt19937_64 &rng, double r) {
     return Point3f(Float(U(rng, -r, r)), Float(U(rng, -r, r)),
                    Float(U(rng, -r, r)));
-}
-
-Vector3f RandomDirection(std::mt19937_64 &rng) {
-    std::normal_distribution<double> n(0, 1);
-    for (;;) {
-        double x = n(rng), y = n(rng), z = n(rng);
-        double l = std::sqrt(x * x + y * y + z * z);
-        if (l > 1e-3)
-            return Vector3f(Float(x / l), Float(y / l), Float(z / l));
-    }
 }
 
 std::shared_ptr<Primitive> Box(const Point3f &lo, const Point3f &hi) {

@@ -1416,6 +1416,7 @@ TEST(LargeArray, AlignmentAndGrowthAcrossTheThreshold) {
     size_t n = 3 * threshold / sizeof(FastTriangle);
     for (size_t i = 0; i < n; ++i) {
         FastTriangle t;
+        t.triangle = nullptr;
         for (int j = 0; j < 3; ++j)
             for (int a = 0; a < 3; ++a) t.v[j][a] = Float(i % 1000 + 3 * j + a);
         tris.push_back(t);

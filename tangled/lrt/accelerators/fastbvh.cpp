@@ -175,6 +175,7 @@ static void StoreTriangle(FastTriangle *ft, const Triangle *tri) {
         ft->v[j][1] = q[j].y;
         ft->v[j][2] = q[j].z;
     }
+    ft->triangle = tri;
 }
 // FastBVHAccel Utility Functions
 static inline int BinIndex(Float c, Float cMin, Float scale, int nBins) {
@@ -452,20 +453,17 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
     if (prims.empty()) return;
     // Build the tree with the binned SAH
     std::vector<FastBVHBuildNode> tree;
-    tree.reserve(prims.size() / 2 + 1);
+    tree.reserve(prims.size());
     FastBVHChild binaryRoot = BuildSAH(prims, 0, int(prims.size()), box, 0,
                                        &tree);
-    nodes.reserve(tree.size() / 2 + 1);
+    nodes.reserve(tree.size());
     SetRoot(box, CollapseTree(tree, binaryRoot));
     // Store the primitives and their triangles in leaf order
-    primitives.resize(prims.size());
-    refs.resize(prims.size());
-    triangles.resize(prims.size());
-    for (size_t k = 0; k < prims.size(); ++k) {
-        int i = prims[k].index;
-        refs[k] = {p[i].get(), inputTris[i]};
-        triangles[k] = inputTriangles[i];
-        primitives[k] = std::move(p[i]);
+    primitives.reserve(prims.size());
+    triangles.reserve(prims.size());
+    for (const FastBVHBuildPrim &bp : prims) {
+        triangles.push_back(inputTriangles[bp.index]);
+        primitives.push_back(std::move(p[bp.index]));
     }
 }
 // FastBVHAccel Method Definitions
@@ -579,12 +577,11 @@ void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
     if (bvh.Nodes().empty()) return;
     size_t n = bvh.Primitives().size();
     primitives.reserve(n);
-    refs.reserve(n);
     triangles.reserve(n);
     std::vector<FastBVHBuildNode> tree;
     tree.reserve(bvh.Nodes().size() / 2);
     FastBVHChild binaryRoot = CopySubtree(bvh, 0, &tree);
-    nodes.reserve(tree.size() / 2 + 1);
+    nodes.reserve(tree.size());
     SetRoot(ToFastBox(bvh.Nodes()[0].bounds), CollapseTree(tree, binaryRoot));
 }
 // FastBVHAccel Method Definitions
@@ -601,7 +598,6 @@ FastBVHChild FastBVHAccel::CopySubtree(const BVHAccel &bvh, int index,
                 const Triangle *tri = GetTriangle(prim.get());
                 if ((pass == 0) != (tri != nullptr)) continue;
                 primitives.push_back(prim);
-                refs.push_back({prim.get(), tri});
                 triangles.emplace_back();
                 if (tri) {
                     StoreTriangle(&triangles.back(), tri);
@@ -662,12 +658,11 @@ void FastBVHAccel::SetRoot(const FastBox &box, FastBVHChild child) {
     rootNode = EmptyNode();
     SetChildBox(&rootNode, 0, box.lo, box.hi);
     root = child;
-    nodes.shrink_to_fit();
 }
 // FastBVHAccel Method Definitions
 bool FastBVHAccel::Intersect(const Ray &ray,
                              SurfaceInteraction *isect) const {
-    if (refs.empty()) return false;
+    if (primitives.empty()) return false;
     FastRay fr(ray);
     int64_t hitTriangle = -1;
     FastTriangleHit closest = {0, 0, 0, 0, 0};
@@ -682,12 +677,13 @@ bool FastBVHAccel::Intersect(const Ray &ray,
                 ray.tMax = hit.t;
                 closest = hit;
                 hitTriangle = leaf.offset + i;
-                LRT_PREFETCH(refs[hitTriangle].triangle);
+                LRT_PREFETCH(tris[hitTriangle].triangle);
+                LRT_PREFETCH(&primitives[hitTriangle]);
             }
         }
         for (int i = 0; i < leaf.nOthers; ++i) {
             size_t k = size_t(leaf.offset) + leaf.nTriangles + i;
-            if (refs[k].primitive->Intersect(ray, isect)) {
+            if (primitives[k]->Intersect(ray, isect)) {
                 hitTriangle = -1;
                 hitOther = true;
             }
@@ -700,19 +696,18 @@ bool FastBVHAccel::Intersect(const Ray &ray,
         Point3f p0(ft.v[0][0], ft.v[0][1], ft.v[0][2]);
         Point3f p1(ft.v[1][0], ft.v[1][1], ft.v[1][2]);
         Point3f p2(ft.v[2][0], ft.v[2][1], ft.v[2][2]);
-        const FastPrimitiveRef &ref = refs[hitTriangle];
-        if (!ref.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
-                                                closest.e1, closest.e2,
-                                                closest.invDet, isect))
+        if (!ft.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
+                                               closest.e1, closest.e2,
+                                               closest.invDet, isect))
             throw std::logic_error("FastBVHAccel::Intersect: the fast triangle "
                                    "test accepted a degenerate triangle");
-        isect->primitive = ref.primitive;
+        isect->primitive = primitives[hitTriangle].get();
     }
     return hitOther || hitTriangle >= 0;
 }
 // FastBVHAccel Method Definitions
 bool FastBVHAccel::IntersectP(const Ray &ray) const {
-    if (refs.empty()) return false;
+    if (primitives.empty()) return false;
     FastRay fr(ray);
     bool hit = false;
     const FastTriangle *tris = triangles.data();
@@ -725,7 +720,7 @@ bool FastBVHAccel::IntersectP(const Ray &ray) const {
         }
         for (int i = 0; i < leaf.nOthers; ++i) {
             size_t k = size_t(leaf.offset) + leaf.nTriangles + i;
-            if (refs[k].primitive->IntersectP(ray)) return hit = true;
+            if (primitives[k]->IntersectP(ray)) return hit = true;
         }
         return false;
     });
@@ -733,13 +728,13 @@ bool FastBVHAccel::IntersectP(const Ray &ray) const {
 }
 // FastBVHAccel Method Definitions
 Bounds3f FastBVHAccel::WorldBound() const {
-    if (refs.empty()) return Bounds3f();
+    if (primitives.empty()) return Bounds3f();
     return GetChildBox(rootNode, 0);
 }
 // FastBVHAccel Method Definitions
 BVHStats FastBVHAccel::Stats() const {
     BVHStats s;
-    if (refs.empty()) return s;
+    if (primitives.empty()) return s;
     double rootArea = BoxArea(GetChildBox(rootNode, 0));
     struct Item {
         FastBVHChild child;

@@ -64,10 +64,6 @@ static_assert(sizeof(FastBVHNode) == (sizeof(Float) == 4 ? 128 : 256),
 // FastBVHAccel Node Types
 struct FastTriangle {
     Float v[3][3];
-};
-
-struct FastPrimitiveRef {
-    const Primitive *primitive;
     const Triangle *triangle;
 };
 // FastBVHAccel Declarations
@@ -109,7 +105,6 @@ class FastBVHAccel : public Aggregate {
     // FastBVHAccel Private Data
     int maxPrimsInNode;
     std::vector<std::shared_ptr<Primitive>> primitives;
-    LargeArray<FastPrimitiveRef> refs;
     LargeArray<FastTriangle> triangles;
     LargeArray<FastBVHNode> nodes;
     FastBVHChild root = {0, 0, 0};

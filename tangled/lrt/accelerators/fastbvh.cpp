@@ -341,13 +341,24 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 static_assert(fastBVHWidth == 4, "the mask is built for four children");
                 mask = unsigned(hit[0] | hit[1] << 1 | hit[2] << 2 | hit[3] << 3);
             }
-            if (mask != 0) {
+            switch (mask) {
+            case 0:
+                break;
+            case 1:
+                current = node.child[0];
+                continue;
+            case 2:
+                current = node.child[1];
+                continue;
+            case 4:
+                current = node.child[2];
+                continue;
+            case 8:
+                current = node.child[3];
+                continue;
+            default: {
                 int c = lowestSetBit[mask];
                 mask &= mask - 1;
-                if (mask == 0) {
-                    current = node.child[c];
-                    continue;
-                }
                 int d = lowestSetBit[mask];
                 mask &= mask - 1;
                 if (mask == 0) {
@@ -386,6 +397,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 if (next.IsLeaf()) nextData = &triangles[next.offset];
                 LRT_PREFETCH(nextData);
                 continue;
+            }
             }
         } else if (visitLeaf(current))
             return;

@@ -445,7 +445,6 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
     // Compute build records of the valid primitives
     std::vector<FastBVHBuildPrim> prims;
     prims.reserve(p.size());
-    std::vector<const Triangle *> inputTris(p.size(), nullptr);
     std::vector<FastTriangle> inputTriangles(p.size());
     FastBox box = FastBox::Empty();
     for (size_t i = 0; i < p.size(); ++i) {
@@ -456,9 +455,9 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
         if (!IsFiniteBox(b)) continue;
         FastBVHBuildPrim bp = {{b.pMin.x, b.pMin.y, b.pMin.z},
                                {b.pMax.x, b.pMax.y, b.pMax.z}, int(i), false, 0};
-        inputTris[i] = GetTriangle(p[i].get());
-        bp.isTriangle = inputTris[i] != nullptr;
-        if (bp.isTriangle) StoreTriangle(&inputTriangles[i], inputTris[i]);
+        const Triangle *tri = GetTriangle(p[i].get());
+        bp.isTriangle = tri != nullptr;
+        if (tri) StoreTriangle(&inputTriangles[i], tri);
         prims.push_back(bp);
         box.Grow(bp.lo, bp.hi);
     }

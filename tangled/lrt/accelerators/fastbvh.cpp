@@ -268,6 +268,34 @@ static inline bool IntersectTriangle(const FastTriangle &tri,
     return true;
 }
 // FastBVHAccel Traversal Function
+struct FastStackEntry {
+    FastBVHChild child;
+    Float tEntry;
+};
+
+// Define DescendIntoNearerOfTwo()
+template <int c, int d>
+static inline FastBVHChild DescendIntoNearerOfTwo(
+    const FastBVHNode &node, const Float t[], FastStackEntry stack[],
+    int &stackSize, const FastBVHNode *nodes, const FastTriangle *triangles) {
+    if (t[d] < t[c]) {
+        stack[stackSize++] = {node.child[c], t[c]};
+        // Prefetch the data of the next child on the stack
+        const FastBVHChild &next = stack[stackSize - 1].child;
+        const void *nextData = &nodes[next.offset];
+        if (next.IsLeaf()) nextData = &triangles[next.offset];
+        LRT_PREFETCH(nextData);
+        return node.child[d];
+    }
+    stack[stackSize++] = {node.child[d], t[d]};
+    // Prefetch the data of the next child on the stack
+    const FastBVHChild &next = stack[stackSize - 1].child;
+    const void *nextData = &nodes[next.offset];
+    if (next.IsLeaf()) nextData = &triangles[next.offset];
+    LRT_PREFETCH(nextData);
+    return node.child[c];
+}
+
 template <int octant, typename LeafVisitor>
 static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                                   const FastTriangle *triangles,
@@ -308,11 +336,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
         (void)t;
         if (!(mask & 1)) return;
     }
-    struct StackEntry {
-        FastBVHChild child;
-        Float tEntry;
-    };
-    StackEntry stack[(fastBVHWidth - 1) * maxBVHDepth + fastBVHWidth];
+    FastStackEntry stack[(fastBVHWidth - 1) * maxBVHDepth + fastBVHWidth];
     int stackSize = 0;
     FastBVHChild current = root;
     while (true) {
@@ -356,23 +380,35 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
             case 8:
                 current = node.child[3];
                 continue;
+            case 3:
+                current = DescendIntoNearerOfTwo<0, 1>(node, t, stack, stackSize, nodes,
+                                                       triangles);
+                continue;
+            case 5:
+                current = DescendIntoNearerOfTwo<0, 2>(node, t, stack, stackSize, nodes,
+                                                       triangles);
+                continue;
+            case 6:
+                current = DescendIntoNearerOfTwo<1, 2>(node, t, stack, stackSize, nodes,
+                                                       triangles);
+                continue;
+            case 9:
+                current = DescendIntoNearerOfTwo<0, 3>(node, t, stack, stackSize, nodes,
+                                                       triangles);
+                continue;
+            case 10:
+                current = DescendIntoNearerOfTwo<1, 3>(node, t, stack, stackSize, nodes,
+                                                       triangles);
+                continue;
+            case 12:
+                current = DescendIntoNearerOfTwo<2, 3>(node, t, stack, stackSize, nodes,
+                                                       triangles);
+                continue;
             default: {
                 int c = lowestSetBit[mask];
                 mask &= mask - 1;
                 int d = lowestSetBit[mask];
                 mask &= mask - 1;
-                if (mask == 0) {
-                    // Push the farther of children c and d, descend into the nearer
-                    if (t[d] < t[c]) std::swap(c, d);
-                    stack[stackSize++] = {node.child[d], t[d]};
-                    // Prefetch the data of the next child on the stack
-                    const FastBVHChild &next = stack[stackSize - 1].child;
-                    const void *nextData = &nodes[next.offset];
-                    if (next.IsLeaf()) nextData = &triangles[next.offset];
-                    LRT_PREFETCH(nextData);
-                    current = node.child[c];
-                    continue;
-                }
                 // Push three or four children, sort them, descend into the nearest
                 int first = stackSize;
                 stack[stackSize++] = {node.child[c], t[c]};
@@ -384,7 +420,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 } while (mask != 0);
                 // Sort the pushed children, the nearest on top
                 for (int i = first + 1; i < stackSize; ++i) {
-                    StackEntry e = stack[i];
+                    FastStackEntry e = stack[i];
                     int j = i;
                     for (; j > first && stack[j - 1].tEntry < e.tEntry; --j)
                         stack[j] = stack[j - 1];

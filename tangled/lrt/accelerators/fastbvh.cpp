@@ -285,6 +285,7 @@ static inline FastBVHChild DescendIntoNearerOfTwo(
         const void *nextData = &nodes[next.offset];
         if (next.IsLeaf()) nextData = &triangles[next.offset];
         LRT_PREFETCH(nextData);
+        LRT_PREFETCH(static_cast<const char *>(nextData) + 64);
         return node.child[d];
     }
     stack[stackSize++] = {node.child[d], t[d]};
@@ -293,6 +294,7 @@ static inline FastBVHChild DescendIntoNearerOfTwo(
     const void *nextData = &nodes[next.offset];
     if (next.IsLeaf()) nextData = &triangles[next.offset];
     LRT_PREFETCH(nextData);
+    LRT_PREFETCH(static_cast<const char *>(nextData) + 64);
     return node.child[c];
 }
 
@@ -432,6 +434,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 const void *nextData = &nodes[next.offset];
                 if (next.IsLeaf()) nextData = &triangles[next.offset];
                 LRT_PREFETCH(nextData);
+                LRT_PREFETCH(static_cast<const char *>(nextData) + 64);
                 continue;
             }
             }

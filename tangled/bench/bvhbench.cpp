@@ -271,8 +271,8 @@ template <typename Accel>
 using AccelSlot = std::shared_ptr<std::unique_ptr<Accel>>;
 
 template <typename Accel, typename Make>
-void RegisterBuild(const std::string &name, AccelSlot<Accel> slot,
-                   Make make, const char *whyNoTree = nullptr) {
+void RegisterBuild(const std::string &name, AccelSlot<Accel> slot, Make make,
+                   const char *whyNoTree = "the build made no tree") {
     benchmark::RegisterBenchmark(
         name.c_str(),
         [slot, make, whyNoTree](benchmark::State &state) {

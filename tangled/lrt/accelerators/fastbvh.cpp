@@ -52,6 +52,12 @@ static inline Float MaxAbs(Float a, Float b, Float c) {
 #else
 #define LRT_PREFETCH(address) ((void)(address))
 #endif
+// Define the LRT_ALWAYS_INLINE macro
+#if defined(__GNUC__) || defined(__clang__)
+#define LRT_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define LRT_ALWAYS_INLINE inline
+#endif
 // FastBVHAccel Local Declarations
 struct FastBVHBuildPrim {
     Float lo[3], hi[3];
@@ -199,9 +205,10 @@ static FastBVHNode EmptyNode() {
     return node;
 }
 // FastBVHAccel Utility Functions
-static inline bool IntersectTriangle(const FastTriangle &tri,
-                                     const FastRay &fr, const Ray &ray,
-                                     FastTriangleHit *hit) {
+static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
+                                                const FastRay &fr,
+                                                const Ray &ray,
+                                                FastTriangleHit *hit) {
     // Translate and permute the vertices with the ray's axes
     const int kx = fr.kx, ky = fr.ky, kz = fr.kz;
     Point3f p0t(tri.v[0][kx] - fr.o[kx], tri.v[0][ky] - fr.o[ky],
@@ -219,14 +226,13 @@ static inline bool IntersectTriangle(const FastTriangle &tri,
     Float e0 = x1 * y2 - y1 * x2;
     Float e1 = x2 * y0 - y2 * x0;
     Float e2 = x0 * y1 - y0 * x1;
-    // Fall back to double-precision test at triangle edges
-    if (sizeof(Float) == sizeof(float) && (e0 == 0 || e1 == 0 || e2 == 0)) {
+    // Test the signs of the edge functions with few branches
+    if (sizeof(Float) == sizeof(float) && ((e0 == 0) | (e1 == 0) | (e2 == 0))) {
         e0 = Float(double(x1) * double(y2) - double(y1) * double(x2));
         e1 = Float(double(x2) * double(y0) - double(y2) * double(x0));
         e2 = Float(double(x0) * double(y1) - double(y0) * double(x1));
     }
-    // Perform triangle edge and determinant tests
-    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0))
+    if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0)))
         return false;
     Float det = e0 + e1 + e2;
     if (det == 0) return false;

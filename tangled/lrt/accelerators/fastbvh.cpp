@@ -60,7 +60,7 @@ static inline Float MaxAbs(Float a, Float b, Float c) {
 #endif
 // FastBVHAccel Local Declarations
 struct FastBVHBuildPrim {
-    Float lo[3], hi[3];
+    Float lo[4], hi[4];
     int index;
     bool isTriangle;
     uint8_t bin;
@@ -70,21 +70,14 @@ struct FastBVHBuildPrim {
 };
 // FastBVHAccel Local Declarations
 struct FastBox {
-    Float lo[3], hi[3];
+    Float lo[4], hi[4];
     static FastBox Empty() {
-        return {{Infinity, Infinity, Infinity},
-                {-Infinity, -Infinity, -Infinity}};
+        return {{Infinity, Infinity, Infinity, Infinity},
+                {-Infinity, -Infinity, -Infinity, -Infinity}};
     }
-    void Grow(const Float l[3], const Float h[3]) {
-        Float l0 = l[0], l1 = l[1], l2 = l[2], h0 = h[0], h1 = h[1], h2 = h[2];
-        Float a0 = lo[0], a1 = lo[1], a2 = lo[2];
-        Float b0 = hi[0], b1 = hi[1], b2 = hi[2];
-        lo[0] = l0 < a0 ? l0 : a0;
-        lo[1] = l1 < a1 ? l1 : a1;
-        lo[2] = l2 < a2 ? l2 : a2;
-        hi[0] = h0 > b0 ? h0 : b0;
-        hi[1] = h1 > b1 ? h1 : b1;
-        hi[2] = h2 > b2 ? h2 : b2;
+    void Grow(const Float l[4], const Float h[4]) {
+        for (int a = 0; a < 4; ++a) lo[a] = l[a] < lo[a] ? l[a] : lo[a];
+        for (int a = 0; a < 4; ++a) hi[a] = h[a] > hi[a] ? h[a] : hi[a];
     }
     void Grow(const FastBox &b) { Grow(b.lo, b.hi); }
     Float HalfArea() const {
@@ -192,7 +185,8 @@ static inline int BinIndex(Float c, Float cMin, Float scale, int nBins) {
 }
 // FastBVHAccel Utility Functions
 static FastBox ToFastBox(const Bounds3f &b) {
-    return {{b.pMin.x, b.pMin.y, b.pMin.z}, {b.pMax.x, b.pMax.y, b.pMax.z}};
+    return {{b.pMin.x, b.pMin.y, b.pMin.z, b.pMin.z},
+            {b.pMax.x, b.pMax.y, b.pMax.z, b.pMax.z}};
 }
 
 static FastBVHNode EmptyNode() {
@@ -498,8 +492,9 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
                                         std::to_string(i) + " is null");
         Bounds3f b = p[i]->WorldBound();
         if (!IsFiniteBox(b)) continue;
-        FastBVHBuildPrim bp = {{b.pMin.x, b.pMin.y, b.pMin.z},
-                               {b.pMax.x, b.pMax.y, b.pMax.z}, int(i), false, 0};
+        FastBVHBuildPrim bp = {{b.pMin.x, b.pMin.y, b.pMin.z, b.pMin.z},
+                               {b.pMax.x, b.pMax.y, b.pMax.z, b.pMax.z},
+                               int(i), false, 0};
         const Triangle *tri = GetTriangle(p[i].get());
         bp.isTriangle = tri != nullptr;
         if (tri) StoreTriangle(&inputTriangles[i], tri);

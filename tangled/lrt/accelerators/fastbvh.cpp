@@ -91,9 +91,36 @@ struct FastBox {
     }
 };
 // FastBVHAccel Local Declarations
-struct FastBVHBuildNode {
-    FastBox box[2];
-    FastBVHChild child[2];
+class SAHBinaryTree {
+  public:
+    struct Node {
+        FastBox box;
+        int start, end, depth, mid;
+        FastBox childBox[2];
+        FastBVHChild leaf;
+    };
+    SAHBinaryTree(std::vector<FastBVHBuildPrim> *prims, int maxPrimsInNode)
+        : prims(*prims), maxPrimsInNode(maxPrimsInNode) {}
+    Node Root(const FastBox &box) {
+        Node root;
+        MakeNode(&root, 0, int(prims.size()), box, 0);
+        return root;
+    }
+    bool IsLeaf(const Node &node) const { return node.mid < 0; }
+    FastBVHChild Leaf(const Node &node) const { return node.leaf; }
+    FastBox Box(const Node &node) const { return node.box; }
+    void Open(const Node &node, Node child[2]) {
+        int depth = node.depth + 1;
+        MakeNode(&child[0], node.start, node.mid, node.childBox[0], depth);
+        MakeNode(&child[1], node.mid, node.end, node.childBox[1], depth);
+    }
+
+  private:
+    void MakeNode(Node *node, int start, int end, const FastBox &box,
+                  int depth);
+    void MakeLeaf(Node *node);
+    std::vector<FastBVHBuildPrim> &prims;
+    int maxPrimsInNode;
 };
 // FastBVHAccel Local Declarations
 constexpr int fastBVHBins = 16;
@@ -189,15 +216,84 @@ static FastBox ToFastBox(const Bounds3f &b) {
             {b.pMax.x, b.pMax.y, b.pMax.z, b.pMax.z}};
 }
 
-static FastBVHNode EmptyNode() {
-    FastBVHNode node;
-    FastBox empty = FastBox::Empty();
-    for (int c = 0; c < fastBVHWidth; ++c) {
-        SetChildBox(&node, c, empty.lo, empty.hi);
-        node.child[c] = {0, 0, 0};
-    }
-    return node;
+static const FastBVHNode &EmptyNode() {
+    static const FastBVHNode emptyNode = [] {
+        FastBVHNode node;
+        FastBox empty = FastBox::Empty();
+        for (int c = 0; c < fastBVHWidth; ++c) {
+            SetChildBox(&node, c, empty.lo, empty.hi);
+            node.child[c] = {0, 0, 0};
+        }
+        return node;
+    }();
+    return emptyNode;
 }
+// FastBVHAccel Utility Functions
+template <typename BinaryTree>
+static FastBVHChild BuildWide(BinaryTree &tree,
+                              const typename BinaryTree::Node &node,
+                              LargeArray<FastBVHNode> *nodes) {
+    if (tree.IsLeaf(node)) return tree.Leaf(node);
+    // Gather up to four children by opening the largest interior ones
+    typename BinaryTree::Node child[fastBVHWidth];
+    tree.Open(node, child);
+    int n = 2;
+    while (n < fastBVHWidth) {
+        int open = -1;
+        Float largest = -1;
+        for (int k = 0; k < n; ++k) {
+            if (tree.IsLeaf(child[k])) continue;
+            Float area = tree.Box(child[k]).HalfArea();
+            if (area > largest) {
+                largest = area;
+                open = k;
+            }
+        }
+        if (open < 0) break;
+        typename BinaryTree::Node opened[2];
+        tree.Open(child[open], opened);
+        child[open] = opened[0];
+        child[n++] = opened[1];
+    }
+    int nodeIndex = int(nodes->size());
+    nodes->push_back(EmptyNode());
+    for (int k = 0; k < n; ++k) {
+        FastBox box = tree.Box(child[k]);
+        SetChildBox(&(*nodes)[nodeIndex], k, box.lo, box.hi);
+    }
+    for (int k = 0; k < n; ++k) {
+        FastBVHChild wide = BuildWide(tree, child[k], nodes);
+        (*nodes)[nodeIndex].child[k] = wide;
+    }
+    return {uint32_t(nodeIndex), fastBVHInterior, 0};
+}
+// FastBVHAccel Utility Functions
+class AdoptedBinaryTree {
+  public:
+    struct Node {
+        int index;
+    };
+    AdoptedBinaryTree(const BVHAccel &bvh,
+                      std::vector<std::shared_ptr<Primitive>> *primitives,
+                      LargeArray<FastTriangle> *triangles)
+        : bvh(bvh), primitives(*primitives), triangles(*triangles) {}
+    bool IsLeaf(const Node &node) const {
+        return bvh.Nodes()[node.index].nPrimitives > 0;
+    }
+    FastBVHChild Leaf(const Node &node);
+    FastBox Box(const Node &node) const {
+        return ToFastBox(bvh.Nodes()[node.index].bounds);
+    }
+    void Open(const Node &node, Node child[2]) const {
+        child[0] = {node.index + 1};
+        child[1] = {bvh.Nodes()[node.index].secondChildOffset};
+    }
+
+  private:
+    const BVHAccel &bvh;
+    std::vector<std::shared_ptr<Primitive>> &primitives;
+    LargeArray<FastTriangle> &triangles;
+};
 // FastBVHAccel Utility Functions
 static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
                                                 const FastRay &fr,
@@ -503,12 +599,9 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
     }
     if (prims.empty()) return;
     // Build the tree with the binned SAH
-    std::vector<FastBVHBuildNode> tree;
-    tree.reserve(prims.size());
-    FastBVHChild binaryRoot = BuildSAH(prims, 0, int(prims.size()), box, 0,
-                                       &tree);
-    nodes.reserve(tree.size());
-    SetRoot(box, CollapseTree(tree, binaryRoot));
+    SAHBinaryTree binary(&prims, maxPrimsInNode);
+    nodes.reserve(prims.size());
+    SetRoot(box, BuildWide(binary, binary.Root(box), &nodes));
     // Store the primitives and their triangles in leaf order
     primitives.reserve(prims.size());
     triangles.reserve(prims.size());
@@ -518,15 +611,13 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
     }
 }
 // FastBVHAccel Method Definitions
-FastBVHChild FastBVHAccel::BuildSAH(std::vector<FastBVHBuildPrim> &prims,
-                                    int start, int end, const FastBox &box,
-                                    int depth,
-                                    std::vector<FastBVHBuildNode> *tree) {
+void SAHBinaryTree::MakeNode(Node *node, int start, int end,
+                             const FastBox &box, int depth) {
+    *node = {box, start, end, depth, -1,
+             {FastBox::Empty(), FastBox::Empty()}, {0, 0, 0}};
     int n = end - start;
-    if (n == 1) return MakeLeaf(prims, start, end);
+    if (n == 1) return MakeLeaf(node);
     int dim = box.MaximumExtent();
-    int mid = -1;
-    FastBox childBox[2] = {FastBox::Empty(), FastBox::Empty()};
     if (depth + CeilLog2(n) < maxBVHDepth) {
         // Bin the build primitives by centroid
         int nBins = std::min(n, fastBVHBins);
@@ -577,46 +668,43 @@ FastBVHChild FastBVHAccel::BuildSAH(std::vector<FastBVHBuildPrim> &prims,
         Float splitCost = fastBVHTraversalCost * area +
                           fastBVHIntersectionCost * bestCost;
         if (n <= maxPrimsInNode && !(splitCost < leafCost))
-            return MakeLeaf(prims, start, end);
+            return MakeLeaf(node);
         // Partition the build primitives at the chosen bin boundary
         if (bestSplit >= 0) {
             auto midIter = std::partition(
                 prims.begin() + start, prims.begin() + end,
                 [=](const FastBVHBuildPrim &bp) { return bp.bin <= bestSplit; });
-            mid = int(midIter - prims.begin());
+            node->mid = int(midIter - prims.begin());
             for (int b = 0; b < nBins; ++b)
-                childBox[b <= bestSplit ? 0 : 1].Grow(bins[0][b].box);
+                node->childBox[b <= bestSplit ? 0 : 1].Grow(bins[0][b].box);
         }
     }
-    if (mid < 0) {
+    if (node->mid < 0) {
         // Split the build primitives into two halves
-        mid = (start + end) / 2;
-        std::nth_element(prims.begin() + start, prims.begin() + mid,
+        node->mid = (start + end) / 2;
+        std::nth_element(prims.begin() + start, prims.begin() + node->mid,
                          prims.begin() + end,
                          [dim](const FastBVHBuildPrim &a, const FastBVHBuildPrim &b) {
                              return a.Centroid(dim) < b.Centroid(dim);
                          });
         for (int i = start; i < end; ++i)
-            childBox[i < mid ? 0 : 1].Grow(prims[i].lo, prims[i].hi);
+            node->childBox[i < node->mid ? 0 : 1].Grow(prims[i].lo, prims[i].hi);
     }
-    // Create an interior build node and build its children
-    int nodeIndex = int(tree->size());
-    tree->emplace_back();
-    FastBVHChild c0 = BuildSAH(prims, start, mid, childBox[0], depth + 1, tree);
-    FastBVHChild c1 = BuildSAH(prims, mid, end, childBox[1], depth + 1, tree);
-    (*tree)[nodeIndex] = {{childBox[0], childBox[1]}, {c0, c1}};
-    return {uint32_t(nodeIndex), fastBVHInterior, 0};
 }
 // FastBVHAccel Method Definitions
-FastBVHChild FastBVHAccel::MakeLeaf(std::vector<FastBVHBuildPrim> &prims,
-                                    int start, int end) const {
+void SAHBinaryTree::MakeLeaf(Node *node) {
+    auto first = prims.begin() + node->start, last = prims.begin() + node->end;
     auto firstOther = std::partition(
-        prims.begin() + start, prims.begin() + end,
-        [](const FastBVHBuildPrim &bp) { return bp.isTriangle; });
-    int nTriangles = int(firstOther - (prims.begin() + start));
-    FastBVHChild leaf = {uint32_t(start), uint16_t(nTriangles),
-                         uint16_t(end - start - nTriangles)};
-    return leaf;
+        first, last, [](const FastBVHBuildPrim &bp) { return bp.isTriangle; });
+    int nTriangles = int(firstOther - first);
+    node->leaf = {uint32_t(node->start), uint16_t(nTriangles),
+                  uint16_t(node->end - node->start - nTriangles)};
+}
+// FastBVHAccel Method Definitions
+void FastBVHAccel::SetRoot(const FastBox &box, FastBVHChild child) {
+    rootNode = EmptyNode();
+    SetChildBox(&rootNode, 0, box.lo, box.hi);
+    root = child;
 }
 // FastBVHAccel Method Definitions
 FastBVHAccel::FastBVHAccel(const BVHAccel &bvh)
@@ -624,91 +712,37 @@ FastBVHAccel::FastBVHAccel(const BVHAccel &bvh)
     CopyTree(bvh);
 }
 // FastBVHAccel Method Definitions
+FastBVHChild AdoptedBinaryTree::Leaf(const Node &node) {
+    const LinearBVHNode &bvhNode = bvh.Nodes()[node.index];
+    FastBVHChild leaf = {uint32_t(primitives.size()), 0, 0};
+    for (int pass = 0; pass < 2; ++pass)
+        for (int i = 0; i < bvhNode.nPrimitives; ++i) {
+            const std::shared_ptr<Primitive> &prim =
+                bvh.Primitives()[bvhNode.primitivesOffset + i];
+            const Triangle *tri = GetTriangle(prim.get());
+            if ((pass == 0) != (tri != nullptr)) continue;
+            primitives.push_back(prim);
+            triangles.emplace_back();
+            if (tri) {
+                StoreTriangle(&triangles.back(), tri);
+                leaf.nTriangles++;
+            } else {
+                leaf.nOthers++;
+            }
+        }
+    return leaf;
+}
+// FastBVHAccel Method Definitions
 void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
     if (bvh.Nodes().empty()) return;
     size_t n = bvh.Primitives().size();
     primitives.reserve(n);
     triangles.reserve(n);
-    std::vector<FastBVHBuildNode> tree;
-    tree.reserve(bvh.Nodes().size() / 2);
-    FastBVHChild binaryRoot = CopySubtree(bvh, 0, &tree);
-    nodes.reserve(tree.size());
-    SetRoot(ToFastBox(bvh.Nodes()[0].bounds), CollapseTree(tree, binaryRoot));
-}
-// FastBVHAccel Method Definitions
-FastBVHChild FastBVHAccel::CopySubtree(const BVHAccel &bvh, int index,
-                                       std::vector<FastBVHBuildNode> *tree) {
-    const LinearBVHNode &node = bvh.Nodes()[index];
-    if (node.nPrimitives > 0) {
-        // Append the primitives of a BVHAccel leaf, triangles first
-        FastBVHChild leaf = {uint32_t(primitives.size()), 0, 0};
-        for (int pass = 0; pass < 2; ++pass)
-            for (int i = 0; i < node.nPrimitives; ++i) {
-                const std::shared_ptr<Primitive> &prim =
-                    bvh.Primitives()[node.primitivesOffset + i];
-                const Triangle *tri = GetTriangle(prim.get());
-                if ((pass == 0) != (tri != nullptr)) continue;
-                primitives.push_back(prim);
-                triangles.emplace_back();
-                if (tri) {
-                    StoreTriangle(&triangles.back(), tri);
-                    leaf.nTriangles++;
-                } else {
-                    leaf.nOthers++;
-                }
-            }
-        return leaf;
-    }
-    int nodeIndex = int(tree->size());
-    tree->emplace_back();
-    int children[2] = {index + 1, node.secondChildOffset};
-    FastBVHChild c0 = CopySubtree(bvh, children[0], tree);
-    FastBVHChild c1 = CopySubtree(bvh, children[1], tree);
-    (*tree)[nodeIndex] = {{ToFastBox(bvh.Nodes()[children[0]].bounds),
-                           ToFastBox(bvh.Nodes()[children[1]].bounds)},
-                          {c0, c1}};
-    return {uint32_t(nodeIndex), fastBVHInterior, 0};
-}
-// FastBVHAccel Method Definitions
-FastBVHChild FastBVHAccel::CollapseTree(
-    const std::vector<FastBVHBuildNode> &tree, FastBVHChild c) {
-    if (c.IsLeaf()) return c;
-    // Gather up to four children by opening the largest interior ones
-    const FastBVHBuildNode &binary = tree[c.offset];
-    FastBVHChild child[fastBVHWidth] = {binary.child[0], binary.child[1]};
-    FastBox box[fastBVHWidth] = {binary.box[0], binary.box[1]};
-    int n = 2;
-    while (n < fastBVHWidth) {
-        int open = -1;
-        Float largest = -1;
-        for (int k = 0; k < n; ++k)
-            if (!child[k].IsLeaf() && box[k].HalfArea() > largest) {
-                largest = box[k].HalfArea();
-                open = k;
-            }
-        if (open < 0) break;
-        const FastBVHBuildNode &opened = tree[child[open].offset];
-        child[open] = opened.child[0];
-        box[open] = opened.box[0];
-        child[n] = opened.child[1];
-        box[n] = opened.box[1];
-        ++n;
-    }
-    int nodeIndex = int(nodes.size());
-    nodes.push_back(EmptyNode());
-    for (int k = 0; k < n; ++k)
-        SetChildBox(&nodes[nodeIndex], k, box[k].lo, box[k].hi);
-    for (int k = 0; k < n; ++k) {
-        FastBVHChild collapsed = CollapseTree(tree, child[k]);
-        nodes[nodeIndex].child[k] = collapsed;
-    }
-    return {uint32_t(nodeIndex), fastBVHInterior, 0};
-}
-// FastBVHAccel Method Definitions
-void FastBVHAccel::SetRoot(const FastBox &box, FastBVHChild child) {
-    rootNode = EmptyNode();
-    SetChildBox(&rootNode, 0, box.lo, box.hi);
-    root = child;
+    nodes.reserve(bvh.Nodes().size());
+    AdoptedBinaryTree binary(bvh, &primitives, &triangles);
+    AdoptedBinaryTree::Node binaryRoot = {0};
+    SetRoot(ToFastBox(bvh.Nodes()[0].bounds),
+            BuildWide(binary, binaryRoot, &nodes));
 }
 // FastBVHAccel Method Definitions
 bool FastBVHAccel::Intersect(const Ray &ray,

@@ -40,8 +40,6 @@ struct LargeArrayAllocator {
 
 template <typename T>
 using LargeArray = std::vector<T, LargeArrayAllocator<T>>;
-struct FastBVHBuildPrim;
-struct FastBVHBuildNode;
 struct FastBox;
 // FastBVHAccel Node Types
 constexpr int fastBVHWidth = 4;
@@ -89,19 +87,9 @@ class FastBVHAccel : public Aggregate {
     BVHStats Stats() const;
   private:
     // FastBVHAccel Private Methods
-    FastBVHChild BuildSAH(std::vector<FastBVHBuildPrim> &prims, int start,
-                          int end, const FastBox &box, int depth,
-                          std::vector<FastBVHBuildNode> *tree);
-    FastBVHChild MakeLeaf(std::vector<FastBVHBuildPrim> &prims, int start,
-                          int end) const;
+    void SetRoot(const FastBox &box, FastBVHChild child);
     // FastBVHAccel Private Methods
     void CopyTree(const BVHAccel &bvh);
-    FastBVHChild CopySubtree(const BVHAccel &bvh, int index,
-                             std::vector<FastBVHBuildNode> *tree);
-    // FastBVHAccel Private Methods
-    FastBVHChild CollapseTree(const std::vector<FastBVHBuildNode> &tree,
-                              FastBVHChild c);
-    void SetRoot(const FastBox &box, FastBVHChild child);
     // FastBVHAccel Private Data
     int maxPrimsInNode;
     std::vector<std::shared_ptr<Primitive>> primitives;

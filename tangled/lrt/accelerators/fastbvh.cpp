@@ -754,7 +754,7 @@ bool FastBVHAccel::Intersect(const Ray &ray,
     bool hitOther = false;
     const FastTriangle *tris = triangles.data();
     TraverseFastBVH(nodes.data(), tris, root, rootNode, ray, fr,
-                    [&](const FastBVHChild &leaf) {
+                    [&](FastBVHChild leaf) {
         // Find the closest hit among a fast leaf's primitives
         for (int i = 0; i < leaf.nTriangles; ++i) {
             FastTriangleHit hit;
@@ -797,7 +797,7 @@ bool FastBVHAccel::IntersectP(const Ray &ray) const {
     bool hit = false;
     const FastTriangle *tris = triangles.data();
     TraverseFastBVH(nodes.data(), tris, root, rootNode, ray, fr,
-                    [&](const FastBVHChild &leaf) {
+                    [&](FastBVHChild leaf) {
         for (int i = 0; i < leaf.nTriangles; ++i) {
             FastTriangleHit h;
             if (IntersectTriangle(tris[leaf.offset + i], fr, ray, &h))

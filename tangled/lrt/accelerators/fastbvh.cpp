@@ -463,21 +463,25 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 static_assert(fastBVHWidth == 4, "the mask is built for four children");
                 mask = unsigned(hit[0] | hit[1] << 1 | hit[2] << 2 | hit[3] << 3);
             }
+            if (mask == 1) {
+                current = node.child[0];
+                continue;
+            }
+            if (mask == 2) {
+                current = node.child[1];
+                continue;
+            }
+            if (mask == 4) {
+                current = node.child[2];
+                continue;
+            }
+            if (mask == 8) {
+                current = node.child[3];
+                continue;
+            }
             switch (mask) {
             case 0:
                 break;
-            case 1:
-                current = node.child[0];
-                continue;
-            case 2:
-                current = node.child[1];
-                continue;
-            case 4:
-                current = node.child[2];
-                continue;
-            case 8:
-                current = node.child[3];
-                continue;
             case 3:
                 current = DescendIntoNearerOfTwo<0, 1>(node, t, stack, stackSize, nodes,
                                                        triangles);

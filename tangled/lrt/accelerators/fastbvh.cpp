@@ -742,7 +742,7 @@ void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
     size_t n = bvh.Primitives().size();
     primitives.reserve(n);
     triangles.reserve(n);
-    nodes.reserve(bvh.Nodes().size());
+    nodes.reserve(n);
     AdoptedBinaryTree binary(bvh, &primitives, &triangles);
     AdoptedBinaryTree::Node binaryRoot = {0};
     SetRoot(ToFastBox(bvh.Nodes()[0].bounds),

@@ -200,6 +200,58 @@ TEST(SurfaceInteraction, ConstructorComputesUnitNormalFromTangents) {
     }
 }
 
+// The constructor that takes the normal uses it as given (negated when
+// flipNormal is set) and stores everything else exactly as the one that
+// computes the normal from the tangents does.
+TEST(SurfaceInteraction, ConstructorWithNormalUsesTheGivenNormal) {
+    constexpr int kCases = 2000;
+    std::mt19937_64 rng(607);
+    for (int c = 0; c < kCases; ++c) {
+        Vector3f dpdu, dpdv;
+        RandomTangents(rng, &dpdu, &dpdv);
+        Normal3f dndu = RandomNormal(rng), dndv = RandomNormal(rng);
+        Point3f p = RandomPoint(rng, -5, 5);
+        Vector3f pError(1e-4f, 2e-4f, 3e-4f), wo = RandomVector(rng, -1, 1);
+        Point2f uv(Uniform(rng, 0, 1), Uniform(rng, 0, 1));
+        // A unit normal unrelated to the tangents, so that a constructor
+        // that recomputed it from them would be caught.
+        Normal3f given = Normalize(RandomNormal(rng));
+        bool flip = c % 2 == 1;
+        SurfaceInteraction si(p, pError, uv, wo, dpdu, dpdv, dndu, dndv,
+                              given, 0.25, flip, 11);
+        Normal3f expected = flip ? -given : given;
+        ASSERT_EQ(si.n, expected) << c;
+        ASSERT_EQ(si.shading.n, expected) << c;
+        ASSERT_EQ(si.flipNormal, flip);
+        // The other members match the tangent constructor's.
+        SurfaceInteraction ref(p, pError, uv, wo, dpdu, dpdv, dndu, dndv,
+                               0.25, flip, 11);
+        ASSERT_EQ(si.p, ref.p);
+        ASSERT_EQ(si.pError, ref.pError);
+        ASSERT_EQ(si.wo, ref.wo);
+        ASSERT_EQ(si.time, ref.time);
+        ASSERT_EQ(si.uv, ref.uv);
+        ASSERT_EQ(si.dpdu, ref.dpdu);
+        ASSERT_EQ(si.dpdv, ref.dpdv);
+        ASSERT_EQ(si.dndu, ref.dndu);
+        ASSERT_EQ(si.dndv, ref.dndv);
+        ASSERT_EQ(si.shading.dpdu, ref.shading.dpdu);
+        ASSERT_EQ(si.shading.dpdv, ref.shading.dpdv);
+        ASSERT_EQ(si.shading.dndu, ref.shading.dndu);
+        ASSERT_EQ(si.shading.dndv, ref.shading.dndv);
+        ASSERT_EQ(si.faceIndex, 11);
+        ASSERT_EQ(si.shape, nullptr);
+        ASSERT_EQ(si.primitive, nullptr);
+        // Given the normal that the tangent constructor computes, the two
+        // constructors agree on the normals too.
+        SurfaceInteraction same(p, pError, uv, wo, dpdu, dpdv, dndu, dndv,
+                                Normal3f(Normalize(Cross(dpdu, dpdv))), 0.25,
+                                flip, 11);
+        ASSERT_EQ(same.n, ref.n);
+        ASSERT_EQ(same.shading.n, ref.shading.n);
+    }
+}
+
 TEST(SurfaceInteraction, FlipNormalFlipsBothNormals) {
     constexpr int kCases = 1000;
     std::mt19937_64 rng(602);

@@ -264,11 +264,10 @@ bool Triangle::Intersect(const Ray &ray, Float *tHit,
     // Fill in SurfaceInteraction from triangle hit
     bool flip = reverseOrientation ^ transformSwapsHandedness;
     *isect = SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
-                                Normal3f(0, 0, 0), Normal3f(0, 0, 0), ray.time,
-                                flip, faceIndex);
+                                Normal3f(0, 0, 0), Normal3f(0, 0, 0),
+                                Normal3f(Normalize(ng)), ray.time, flip,
+                                faceIndex);
     isect->shape = this;
-    isect->n = isect->shading.n = Normal3f(Normalize(ng));
-    if (flip) isect->n = isect->shading.n = -isect->n;
     if (!mesh->n.empty() || !mesh->s.empty()) {
         // Initialize Triangle shading geometry
         // Compute shading normal ns for triangle
@@ -370,11 +369,10 @@ bool Triangle::CompleteIntersection(const Ray &ray, const Point3f &p0,
     // Fill in SurfaceInteraction from triangle hit
     bool flip = reverseOrientation ^ transformSwapsHandedness;
     *isect = SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
-                                Normal3f(0, 0, 0), Normal3f(0, 0, 0), ray.time,
-                                flip, faceIndex);
+                                Normal3f(0, 0, 0), Normal3f(0, 0, 0),
+                                Normal3f(Normalize(ng)), ray.time, flip,
+                                faceIndex);
     isect->shape = this;
-    isect->n = isect->shading.n = Normal3f(Normalize(ng));
-    if (flip) isect->n = isect->shading.n = -isect->n;
     if (!mesh->n.empty() || !mesh->s.empty()) {
         // Initialize Triangle shading geometry
         // Compute shading normal ns for triangle

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -263,10 +264,10 @@ bool Triangle::Intersect(const Ray &ray, Float *tHit,
     Point2f uvHit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
     // Fill in SurfaceInteraction from triangle hit
     bool flip = reverseOrientation ^ transformSwapsHandedness;
-    *isect = SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
-                                Normal3f(0, 0, 0), Normal3f(0, 0, 0),
-                                Normal3f(Normalize(ng)), ray.time, flip,
-                                faceIndex);
+    new (isect) SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
+                                   Normal3f(0, 0, 0), Normal3f(0, 0, 0),
+                                   Normal3f(Normalize(ng)), ray.time, flip,
+                                   faceIndex);
     isect->shape = this;
     if (!mesh->n.empty() || !mesh->s.empty()) {
         // Initialize Triangle shading geometry
@@ -368,10 +369,10 @@ bool Triangle::CompleteIntersection(const Ray &ray, const Point3f &p0,
     Point2f uvHit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
     // Fill in SurfaceInteraction from triangle hit
     bool flip = reverseOrientation ^ transformSwapsHandedness;
-    *isect = SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
-                                Normal3f(0, 0, 0), Normal3f(0, 0, 0),
-                                Normal3f(Normalize(ng)), ray.time, flip,
-                                faceIndex);
+    new (isect) SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
+                                   Normal3f(0, 0, 0), Normal3f(0, 0, 0),
+                                   Normal3f(Normalize(ng)), ray.time, flip,
+                                   faceIndex);
     isect->shape = this;
     if (!mesh->n.empty() || !mesh->s.empty()) {
         // Initialize Triangle shading geometry

@@ -81,6 +81,27 @@ Transform RandomTransform(std::mt19937_64 &rng, bool mirror) {
            Rotate(Uniform(rng, -180, 180), Vector3f(axis.z, axis.x, axis.y));
 }
 
+// Random arguments for the SurfaceInteraction constructors.
+struct ConstructorArgs {
+    Vector3f dpdu, dpdv;
+    Normal3f dndu, dndv;
+    Point3f p;
+    Vector3f pError, wo;
+    Point2f uv;
+};
+
+ConstructorArgs RandomConstructorArgs(std::mt19937_64 &rng) {
+    ConstructorArgs a;
+    RandomTangents(rng, &a.dpdu, &a.dpdv);
+    a.dndu = RandomNormal(rng);
+    a.dndv = RandomNormal(rng);
+    a.p = RandomPoint(rng, -5, 5);
+    a.pError = Vector3f(1e-4f, 2e-4f, 3e-4f);
+    a.wo = RandomVector(rng, -1, 1);
+    a.uv = Point2f(Uniform(rng, 0, 1), Uniform(rng, 0, 1));
+    return a;
+}
+
 SurfaceInteraction RandomSurfaceInteraction(std::mt19937_64 &rng,
                                             bool flipNormal) {
     Vector3f dpdu, dpdv;
@@ -161,16 +182,11 @@ TEST(SurfaceInteraction, ConstructorComputesUnitNormalFromTangents) {
     constexpr int kCases = 3000;
     std::mt19937_64 rng(601);
     for (int c = 0; c < kCases; ++c) {
-        Vector3f dpdu, dpdv;
-        RandomTangents(rng, &dpdu, &dpdv);
-        Normal3f dndu = RandomNormal(rng), dndv = RandomNormal(rng);
-        Point3f p = RandomPoint(rng, -5, 5);
-        Vector3f pError(1e-4f, 2e-4f, 3e-4f), wo = RandomVector(rng, -1, 1);
-        Point2f uv(Uniform(rng, 0, 1), Uniform(rng, 0, 1));
-        SurfaceInteraction si(p, pError, uv, wo, dpdu, dpdv, dndu, dndv,
-                              0.75, false, 7);
+        ConstructorArgs a = RandomConstructorArgs(rng);
+        SurfaceInteraction si(a.p, a.pError, a.uv, a.wo, a.dpdu, a.dpdv,
+                              a.dndu, a.dndv, 0.75, false, 7);
         // n is the normalized cross product, computed independently.
-        V3 cr = CrossLD(dpdu, dpdv);
+        V3 cr = CrossLD(a.dpdu, a.dpdv);
         LD cl = std::sqrt(cr.x * cr.x + cr.y * cr.y + cr.z * cr.z);
         ASSERT_NEAR(si.n.x, double(cr.x / cl), 4 * kEps) << c;
         ASSERT_NEAR(si.n.y, double(cr.y / cl), 4 * kEps) << c;
@@ -178,25 +194,25 @@ TEST(SurfaceInteraction, ConstructorComputesUnitNormalFromTangents) {
         ASSERT_NEAR(double(LengthLD(si.n)), 1, 4 * kEps);
         ASSERT_TRUE(si.IsSurfaceInteraction());
         // Everything else is stored; shading geometry starts as a copy.
-        ASSERT_EQ(si.p, p);
-        ASSERT_EQ(si.pError, pError);
-        ASSERT_EQ(si.uv, uv);
+        ASSERT_EQ(si.p, a.p);
+        ASSERT_EQ(si.pError, a.pError);
+        ASSERT_EQ(si.uv, a.uv);
         ASSERT_EQ(si.time, Float(0.75));
-        ASSERT_EQ(si.dpdu, dpdu);
-        ASSERT_EQ(si.dpdv, dpdv);
-        ASSERT_EQ(si.dndu, dndu);
-        ASSERT_EQ(si.dndv, dndv);
+        ASSERT_EQ(si.dpdu, a.dpdu);
+        ASSERT_EQ(si.dpdv, a.dpdv);
+        ASSERT_EQ(si.dndu, a.dndu);
+        ASSERT_EQ(si.dndv, a.dndv);
         ASSERT_EQ(si.faceIndex, 7);
         ASSERT_FALSE(si.flipNormal);
         ASSERT_EQ(si.shading.n, si.n);
-        ASSERT_EQ(si.shading.dpdu, dpdu);
-        ASSERT_EQ(si.shading.dpdv, dpdv);
-        ASSERT_EQ(si.shading.dndu, dndu);
-        ASSERT_EQ(si.shading.dndv, dndv);
+        ASSERT_EQ(si.shading.dpdu, a.dpdu);
+        ASSERT_EQ(si.shading.dpdv, a.dpdv);
+        ASSERT_EQ(si.shading.dndu, a.dndu);
+        ASSERT_EQ(si.shading.dndv, a.dndv);
         ASSERT_EQ(si.shape, nullptr);
         ASSERT_EQ(si.primitive, nullptr);
         ASSERT_NEAR(double(LengthLD(si.wo)), 1, 4 * kEps);
-        ASSERT_NEAR(double(CosLD(si.wo, wo)), 1, 4 * kEps);
+        ASSERT_NEAR(double(CosLD(si.wo, a.wo)), 1, 4 * kEps);
     }
 }
 
@@ -207,25 +223,20 @@ TEST(SurfaceInteraction, ConstructorWithNormalUsesTheGivenNormal) {
     constexpr int kCases = 2000;
     std::mt19937_64 rng(607);
     for (int c = 0; c < kCases; ++c) {
-        Vector3f dpdu, dpdv;
-        RandomTangents(rng, &dpdu, &dpdv);
-        Normal3f dndu = RandomNormal(rng), dndv = RandomNormal(rng);
-        Point3f p = RandomPoint(rng, -5, 5);
-        Vector3f pError(1e-4f, 2e-4f, 3e-4f), wo = RandomVector(rng, -1, 1);
-        Point2f uv(Uniform(rng, 0, 1), Uniform(rng, 0, 1));
+        ConstructorArgs a = RandomConstructorArgs(rng);
         // A unit normal unrelated to the tangents, so that a constructor
         // that recomputed it from them would be caught.
         Normal3f given = Normalize(RandomNormal(rng));
         bool flip = c % 2 == 1;
-        SurfaceInteraction si(p, pError, uv, wo, dpdu, dpdv, dndu, dndv,
-                              given, 0.25, flip, 11);
+        SurfaceInteraction si(a.p, a.pError, a.uv, a.wo, a.dpdu, a.dpdv,
+                              a.dndu, a.dndv, given, 0.25, flip, 11);
         Normal3f expected = flip ? -given : given;
         ASSERT_EQ(si.n, expected) << c;
         ASSERT_EQ(si.shading.n, expected) << c;
         ASSERT_EQ(si.flipNormal, flip);
         // The other members match the tangent constructor's.
-        SurfaceInteraction ref(p, pError, uv, wo, dpdu, dpdv, dndu, dndv,
-                               0.25, flip, 11);
+        SurfaceInteraction ref(a.p, a.pError, a.uv, a.wo, a.dpdu, a.dpdv,
+                               a.dndu, a.dndv, 0.25, flip, 11);
         ASSERT_EQ(si.p, ref.p);
         ASSERT_EQ(si.pError, ref.pError);
         ASSERT_EQ(si.wo, ref.wo);
@@ -244,9 +255,10 @@ TEST(SurfaceInteraction, ConstructorWithNormalUsesTheGivenNormal) {
         ASSERT_EQ(si.primitive, nullptr);
         // Given the normal that the tangent constructor computes, the two
         // constructors agree on the normals too.
-        SurfaceInteraction same(p, pError, uv, wo, dpdu, dpdv, dndu, dndv,
-                                Normal3f(Normalize(Cross(dpdu, dpdv))), 0.25,
-                                flip, 11);
+        SurfaceInteraction same(a.p, a.pError, a.uv, a.wo, a.dpdu, a.dpdv,
+                                a.dndu, a.dndv,
+                                Normal3f(Normalize(Cross(a.dpdu, a.dpdv))),
+                                0.25, flip, 11);
         ASSERT_EQ(same.n, ref.n);
         ASSERT_EQ(same.shading.n, ref.shading.n);
     }

@@ -426,10 +426,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1) *
                         (1 + 2 * gamma(3));
             }
-            int hit[fastBVHWidth];
-            for (int c = 0; c < fastBVHWidth; ++c) hit[c] = !(t[c] > t1[c]);
-            static_assert(fastBVHWidth == 4, "the mask is built for four children");
-            mask = unsigned(hit[0] | hit[1] << 1 | hit[2] << 2 | hit[3] << 3);
+            mask = EnteredChildren(t, t1);
         }
         (void)t;
         if (!(mask & 1)) return;
@@ -458,10 +455,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                     t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1) *
                             (1 + 2 * gamma(3));
                 }
-                int hit[fastBVHWidth];
-                for (int c = 0; c < fastBVHWidth; ++c) hit[c] = !(t[c] > t1[c]);
-                static_assert(fastBVHWidth == 4, "the mask is built for four children");
-                mask = unsigned(hit[0] | hit[1] << 1 | hit[2] << 2 | hit[3] << 3);
+                mask = EnteredChildren(t, t1);
             }
             if (mask == 1) {
                 current = node.child[0];

@@ -12,6 +12,9 @@
 #include <memory>
 #include <new>
 #include <vector>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace lrt {
 
@@ -64,6 +67,24 @@ struct FastTriangle {
     Float v[3][3];
     const Triangle *triangle;
 };
+// FastBVHAccel Inline Functions
+template <typename T>
+inline unsigned EnteredChildren(const T tNear[fastBVHWidth],
+                                const T tFar[fastBVHWidth]) {
+    static_assert(fastBVHWidth == 4, "the mask is built for four children");
+    int hit[fastBVHWidth];
+    for (int c = 0; c < fastBVHWidth; ++c) hit[c] = !(tNear[c] > tFar[c]);
+    return unsigned(hit[0] | hit[1] << 1 | hit[2] << 2 | hit[3] << 3);
+}
+
+#if defined(__SSE2__)
+template <>
+inline unsigned EnteredChildren(const float tNear[fastBVHWidth],
+                                const float tFar[fastBVHWidth]) {
+    __m128 missed = _mm_cmpgt_ps(_mm_loadu_ps(tNear), _mm_loadu_ps(tFar));
+    return ~unsigned(_mm_movemask_ps(missed)) & 15u;
+}
+#endif
 // FastBVHAccel Declarations
 class FastBVHAccel : public Aggregate {
   public:

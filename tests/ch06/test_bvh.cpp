@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <memory>
@@ -1306,8 +1307,9 @@ template <typename T>
 void CheckEnteredChildren() {
     const T inf = std::numeric_limits<T>::infinity();
     const T nan = std::numeric_limits<T>::quiet_NaN();
-    const T values[] = {-inf, T(-1), T(-0.0), T(0), std::numeric_limits<T>::denorm_min(),
-                        T(1), T(1) + std::numeric_limits<T>::epsilon(),
+    const T values[] = {-inf, T(-1), T(-0.0), T(0),
+                        std::numeric_limits<T>::denorm_min(), T(1),
+                        T(1) + std::numeric_limits<T>::epsilon(),
                         std::numeric_limits<T>::max(), inf, nan, -nan};
     auto expected = [](const T *tNear, const T *tFar) {
         unsigned m = 0;

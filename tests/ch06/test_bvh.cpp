@@ -924,15 +924,39 @@ TEST(BVHDegenerate, NaNAndInfiniteBounds) {
 TEST(BVHDegenerate, ExponentiallySpacedCentroidsStayShallow) {
     CheckExponentiallySpacedCentroids(Plain(kPlainMethods));
 }
+// Every member of two interactions, compared exactly.
+bool SameInteraction(const SurfaceInteraction &a, const SurfaceInteraction &b) {
+    return a.p == b.p && a.time == b.time && a.pError == b.pError &&
+           a.wo == b.wo && a.n == b.n && a.uv == b.uv && a.dpdu == b.dpdu &&
+           a.dpdv == b.dpdv && a.dndu == b.dndu && a.dndv == b.dndv &&
+           a.shape == b.shape && a.shading.n == b.shading.n &&
+           a.shading.dpdu == b.shading.dpdu &&
+           a.shading.dpdv == b.shading.dpdv &&
+           a.shading.dndu == b.shading.dndu &&
+           a.shading.dndv == b.shading.dndv && a.faceIndex == b.faceIndex &&
+           a.flipNormal == b.flipNormal;
+}
+
 // FastBVHAccel's triangle test is Triangle's, reorganized: on a single
 // triangle it must agree with Triangle::Intersect() bit for bit, including
 // rays aimed exactly at edges and vertices (which exercise the double
-// precision fallback) and degenerate triangles.
+// precision fallback) and degenerate triangles. Its interaction must be
+// Triangle::Intersect()'s, member for member, both for meshes of positions
+// only (completed from the FastTriangleInfo record, which must then carry
+// the right face index and orientation: reversed, mirrored by the
+// transformation, or both) and for meshes with normals, tangents or (u,v)
+// (completed by the Triangle). The split methods cycle, since the record is
+// filled by the SAH builder and by the copy of BVHAccel's trees.
 TEST(FastBVHAccel, TriangleTestMatchesTriangleIntersect) {
     std::mt19937_64 rng(614);
-    Transform id;
+    Transform id, mirror = Scale(-1, 1, 1), mirrorInverse = Inverse(mirror);
+    ASSERT_TRUE(mirror.SwapsHandedness());
+    const SplitMethod methods[] = {SplitMethod::SAH, SplitMethod::HLBVH,
+                                   SplitMethod::Middle,
+                                   SplitMethod::EqualCounts};
     int tri[3] = {0, 1, 2};
-    int disagreements = 0, hits = 0;
+    int disagreements = 0, hits = 0, plainHits = 0, attributeHits = 0,
+        flippedHits = 0;
     constexpr int kTriangles = 4000, kRays = 40;
     for (int i = 0; i < kTriangles; ++i) {
         Point3f c = RandomPoint(rng, Point3f(0, 0, 0), 10);
@@ -941,21 +965,41 @@ TEST(FastBVHAccel, TriangleTestMatchesTriangleIntersect) {
         for (Point3f &q : p) q = RandomPoint(rng, c, size);
         if (i % 10 == 0) p[2] = p[0] + (p[1] - p[0]) * Float(U(rng, 0, 1));
         if (i % 17 == 0) p[1] = p[0];
-        auto shapes = CreateTriangleMesh(&id, &id, false, 1, tri, 3, p,
-                                         nullptr, nullptr, nullptr);
+        // Orientation, face index and vertex attributes vary with i.
+        bool reverse = i % 3 == 1;
+        const Transform *toWorld = i % 4 == 2 ? &mirror : &id;
+        const Transform *toObject = i % 4 == 2 ? &mirrorInverse : &id;
+        int face = 1000 + i;
+        const int *faceIndices = i % 2 == 1 ? &face : nullptr;
+        Point2f uv[3] = {Point2f(0.25f, 0.5f), Point2f(0.75f, 0.125f),
+                         Point2f(0.5f, 1)};
+        Normal3f n[3] = {Normal3f(0, 0, 1), Normal3f(0, 1, 1),
+                         Normal3f(1, 0, 1)};
+        Vector3f ss[3] = {Vector3f(1, 0, 0), Vector3f(1, 1, 0),
+                          Vector3f(0, 1, 0)};
+        int attributes = i % 8;  // 0 to 4: none; 5: uv; 6: n; 7: s
+        auto shapes = CreateTriangleMesh(
+            toWorld, toObject, reverse, 1, tri, 3, p,
+            attributes == 7 ? ss : nullptr, attributes == 6 ? n : nullptr,
+            attributes == 5 ? uv : nullptr, faceIndices);
+        const auto &triangle = static_cast<const Triangle &>(*shapes[0]);
+        Point3f w[3];
+        triangle.GetVertices(&w[0], &w[1], &w[2]);
         auto prim = std::make_shared<GeometricPrimitive>(shapes[0]);
         std::vector<std::shared_ptr<Primitive>> one = {prim};
-        FastBVHAccel fast(one);
+        FastBVHAccel fast(one, 8, methods[i % 4]);
         for (int r = 0; r < kRays; ++r) {
             // A target on the triangle, on an edge, or at a vertex.
             Float b0 = Float(U(rng, 0, 1)), b1 = Float(U(rng, 0, 1 - b0));
             if (r % 4 == 1) b1 = 1 - b0;
             if (r % 4 == 2) b0 = 1, b1 = 0;
-            Point3f target = p[0] * b0 + p[1] * b1 + p[2] * (1 - b0 - b1);
-            Point3f o = RandomPoint(rng, c, 20 * size + 1);
+            Point3f target = w[0] * b0 + w[1] * b1 + w[2] * (1 - b0 - b1);
+            Point3f o = RandomPoint(rng, Point3f((*toWorld)(c)),
+                                    20 * size + 1);
             Ray ray(o, target - o);
             if (r % 5 == 0) ray.d = Normalize(ray.d);
             if (r % 7 == 0) ray.tMax = Float(U(rng, 0.5, 1.5));
+            ray.time = Float(r) / kRays;
             Float tShape;
             SurfaceInteraction siShape, siFast;
             bool shapeHit = shapes[0]->Intersect(ray, &tShape, &siShape);
@@ -964,17 +1008,12 @@ TEST(FastBVHAccel, TriangleTestMatchesTriangleIntersect) {
             bool ok = shapeHit == fastHit &&
                       fast.IntersectP(ray) == shapes[0]->IntersectP(ray);
             if (ok && shapeHit)
-                ok = rf.tMax == tShape && siFast.p == siShape.p &&
-                     siFast.pError == siShape.pError &&
-                     siFast.n == siShape.n && siFast.uv == siShape.uv &&
-                     siFast.dpdu == siShape.dpdu &&
-                     siFast.dpdv == siShape.dpdv &&
-                     siFast.shading.n == siShape.shading.n &&
-                     siFast.wo == siShape.wo &&
-                     siFast.shape == siShape.shape &&
-                     siFast.faceIndex == siShape.faceIndex &&
+                ok = rf.tMax == tShape && SameInteraction(siFast, siShape) &&
                      siFast.primitive == prim.get();
             hits += shapeHit;
+            plainHits += shapeHit && attributes < 5;
+            attributeHits += shapeHit && attributes >= 5;
+            flippedHits += shapeHit && siShape.flipNormal;
             if (!ok && disagreements++ < kMaxFailuresReported)
                 ADD_FAILURE() << "triangle " << i << " ray " << ray
                               << ": shape " << shapeHit << " t " << tShape
@@ -983,6 +1022,10 @@ TEST(FastBVHAccel, TriangleTestMatchesTriangleIntersect) {
     }
     EXPECT_EQ(disagreements, 0);
     EXPECT_GT(hits, kTriangles * kRays / 4);
+    // Each kind of mesh and both orientations were hit often.
+    EXPECT_GT(plainHits, hits / 2);
+    EXPECT_GT(attributeHits, hits / 5);
+    EXPECT_GT(flippedHits, hits / 4);
 }
 
 TEST(BVHHelpers, IsFiniteBoxAndCeilLog2) {

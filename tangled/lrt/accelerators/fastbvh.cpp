@@ -363,6 +363,57 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     *hit = {t, e0, e1, e2, invDet};
     return true;
 }
+// FastBVHAccel Utility Functions
+static inline bool CompletePlainTriangle(const Ray &ray, const Point3f &p0,
+                                         const Point3f &p1,
+                                         const Point3f &p2,
+                                         const FastTriangleHit &hit,
+                                         const FastTriangleInfo &info,
+                                         const Triangle *shape,
+                                         SurfaceInteraction *isect) {
+    Float e0 = hit.e0, e1 = hit.e1, e2 = hit.e2, invDet = hit.invDet;
+    // Reject degenerate triangles
+    Vector3f dp02 = p0 - p2, dp12 = p1 - p2;
+    Vector3f ng = Cross(dp02, dp12);
+    if (ng.LengthSquared() == 0) return false;
+    // Compute barycentric coordinates of the triangle hit
+    Float b0 = e0 * invDet, b1 = e1 * invDet, b2 = e2 * invDet;
+    Point2f uv[3];
+    Triangle::GetDefaultUVs(uv);
+    // Compute triangle partial derivatives from uv
+    Vector2f duv02 = uv[0] - uv[2], duv12 = uv[1] - uv[2];
+    Float determinant = duv02[0] * duv12[1] - duv02[1] * duv12[0];
+    bool degenerateUV = std::abs(determinant) < 1e-8;
+    Vector3f dpdu, dpdv;
+    if (!degenerateUV) {
+        Float invdet = 1 / determinant;
+        dpdu = (duv12[1] * dp02 - duv02[1] * dp12) * invdet;
+        dpdv = (duv02[0] * dp12 - duv12[0] * dp02) * invdet;
+    }
+    // Handle degenerate uv parameterization or partial derivatives
+    if (degenerateUV || Cross(dpdu, dpdv).LengthSquared() == 0)
+        CoordinateSystem(Normalize(ng), &dpdu, &dpdv);
+    // Compute error bounds for triangle intersection
+    Float xAbsSum = std::abs(b0 * p0.x) + std::abs(b1 * p1.x) +
+                    std::abs(b2 * p2.x);
+    Float yAbsSum = std::abs(b0 * p0.y) + std::abs(b1 * p1.y) +
+                    std::abs(b2 * p2.y);
+    Float zAbsSum = std::abs(b0 * p0.z) + std::abs(b1 * p1.z) +
+                    std::abs(b2 * p2.z);
+    Vector3f pError = gamma(7) * Vector3f(xAbsSum, yAbsSum, zAbsSum);
+    // Interpolate (u,v) parametric coordinates and hit point
+    Point3f pHit = b0 * p0 + b1 * p1 + b2 * p2;
+    Point2f uvHit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
+    bool flip = info.flipNormal;
+    int faceIndex = info.faceIndex;
+    // Construct the SurfaceInteraction of the triangle hit
+    new (isect) SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
+                                   Normal3f(0, 0, 0), Normal3f(0, 0, 0),
+                                   Normal3f(Normalize(ng)), ray.time, flip,
+                                   faceIndex);
+    isect->shape = shape;
+    return true;
+}
 // FastBVHAccel Traversal Function
 struct FastStackEntry {
     FastBVHChild child;
@@ -371,7 +422,7 @@ struct FastStackEntry {
 
 // Define DescendIntoNearerOfTwo()
 template <int c, int d>
-static inline FastBVHChild DescendIntoNearerOfTwo(
+static LRT_ALWAYS_INLINE FastBVHChild DescendIntoNearerOfTwo(
     const FastBVHNode &node, const Float t[], FastStackEntry stack[],
     int &stackSize, const FastBVHNode *nodes, const FastTriangle *triangles) {
     if (t[d] < t[c]) {
@@ -607,6 +658,7 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
         triangles.push_back(inputTriangles[bp.index]);
         primitives.push_back(std::move(p[bp.index]));
     }
+    StoreTriangleInfo();
 }
 // FastBVHAccel Method Definitions
 void SAHBinaryTree::MakeNode(Node *node, int start, int end,
@@ -741,6 +793,7 @@ void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
     AdoptedBinaryTree::Node binaryRoot = {0};
     SetRoot(ToFastBox(bvh.Nodes()[0].bounds),
             BuildWide(binary, binaryRoot, &nodes));
+    StoreTriangleInfo();
 }
 // FastBVHAccel Method Definitions
 bool FastBVHAccel::Intersect(const Ray &ray,
@@ -760,7 +813,7 @@ bool FastBVHAccel::Intersect(const Ray &ray,
                 ray.tMax = hit.t;
                 closest = hit;
                 hitTriangle = leaf.offset + i;
-                LRT_PREFETCH(tris[hitTriangle].triangle);
+                LRT_PREFETCH(&triangleInfo[hitTriangle]);
                 LRT_PREFETCH(&primitives[hitTriangle]);
             }
         }
@@ -776,17 +829,31 @@ bool FastBVHAccel::Intersect(const Ray &ray,
     if (hitTriangle >= 0) {
         // Complete the interaction for the closest triangle hit
         const FastTriangle &ft = triangles[hitTriangle];
+        const FastTriangleInfo &info = triangleInfo[hitTriangle];
         Point3f p0(ft.v[0][0], ft.v[0][1], ft.v[0][2]);
         Point3f p1(ft.v[1][0], ft.v[1][1], ft.v[1][2]);
         Point3f p2(ft.v[2][0], ft.v[2][1], ft.v[2][2]);
-        if (!ft.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
-                                               closest.e1, closest.e2,
-                                               closest.invDet, isect))
+        bool completed =
+            info.plain
+                ? CompletePlainTriangle(ray, p0, p1, p2, closest, info,
+                                        ft.triangle, isect)
+                : ft.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
+                                                    closest.e1, closest.e2,
+                                                    closest.invDet, isect);
+        if (!completed)
             throw std::logic_error("FastBVHAccel::Intersect: the fast triangle "
                                    "test accepted a degenerate triangle");
         isect->primitive = primitives[hitTriangle].get();
     }
     return hitOther || hitTriangle >= 0;
+}
+// FastBVHAccel Method Definitions
+void FastBVHAccel::StoreTriangleInfo() {
+    triangleInfo.assign(triangles.size(), FastTriangleInfo{0, false, false});
+    for (size_t i = 0; i < triangles.size(); ++i)
+        if (const Triangle *tri = triangles[i].triangle)
+            triangleInfo[i] = {tri->FaceIndex(), tri->FlipsNormal(),
+                               !tri->HasVertexAttributes()};
 }
 // FastBVHAccel Method Definitions
 bool FastBVHAccel::IntersectP(const Ray &ray) const {

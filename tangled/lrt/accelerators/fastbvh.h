@@ -67,6 +67,12 @@ struct FastTriangle {
     Float v[3][3];
     const Triangle *triangle;
 };
+// FastBVHAccel Node Types
+struct FastTriangleInfo {
+    int faceIndex;
+    bool flipNormal;
+    bool plain;
+};
 // FastBVHAccel Inline Functions
 template <typename T>
 inline unsigned EnteredChildren(const T tNear[fastBVHWidth],
@@ -111,10 +117,13 @@ class FastBVHAccel : public Aggregate {
     void SetRoot(const FastBox &box, FastBVHChild child);
     // FastBVHAccel Private Methods
     void CopyTree(const BVHAccel &bvh);
+    // FastBVHAccel Private Methods
+    void StoreTriangleInfo();
     // FastBVHAccel Private Data
     int maxPrimsInNode;
     std::vector<std::shared_ptr<Primitive>> primitives;
     LargeArray<FastTriangle> triangles;
+    LargeArray<FastTriangleInfo> triangleInfo;
     LargeArray<FastBVHNode> nodes;
     FastBVHChild root = {0, 0, 0};
     FastBVHNode rootNode = {};

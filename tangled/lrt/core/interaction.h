@@ -81,4 +81,25 @@ class SurfaceInteraction : public Interaction {
     bool flipNormal = false;
 };
 
+// SurfaceInteraction Inline Definitions
+inline SurfaceInteraction::SurfaceInteraction(
+    const Point3f &p, const Vector3f &pError, const Point2f &uv,
+    const Vector3f &wo, const Vector3f &dpdu, const Vector3f &dpdv,
+    const Normal3f &dndu, const Normal3f &dndv, const Normal3f &normal,
+    Float time, bool flipNormal, int faceIndex)
+    : Interaction(p, normal, pError, wo, time),
+      uv(uv), dpdu(dpdu), dpdv(dpdv), dndu(dndu), dndv(dndv),
+      faceIndex(faceIndex), flipNormal(flipNormal) {
+    shading.n = n;
+    shading.dpdu = dpdu;
+    shading.dpdv = dpdv;
+    shading.dndu = dndu;
+    shading.dndv = dndv;
+    // Adjust normal based on orientation and handedness
+    if (flipNormal) {
+        n = -n;
+        shading.n = -shading.n;
+    }
+}
+
 }  // namespace lrt

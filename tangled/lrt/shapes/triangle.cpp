@@ -239,6 +239,7 @@ bool Triangle::Intersect(const Ray &ray, Float *tHit,
     // Compute triangle partial derivatives
     Point2f uv[3];
     GetUVs(uv);
+    // Compute triangle partial derivatives from uv
     Vector2f duv02 = uv[0] - uv[2], duv12 = uv[1] - uv[2];
     Float determinant = duv02[0] * duv12[1] - duv02[1] * duv12[0];
     bool degenerateUV = std::abs(determinant) < 1e-8;
@@ -264,6 +265,7 @@ bool Triangle::Intersect(const Ray &ray, Float *tHit,
     Point2f uvHit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
     // Fill in SurfaceInteraction from triangle hit
     bool flip = reverseOrientation ^ transformSwapsHandedness;
+    // Construct the SurfaceInteraction of the triangle hit
     new (isect) SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
                                    Normal3f(0, 0, 0), Normal3f(0, 0, 0),
                                    Normal3f(Normalize(ng)), ray.time, flip,
@@ -344,6 +346,7 @@ bool Triangle::CompleteIntersection(const Ray &ray, const Point3f &p0,
     // Compute triangle partial derivatives
     Point2f uv[3];
     GetUVs(uv);
+    // Compute triangle partial derivatives from uv
     Vector2f duv02 = uv[0] - uv[2], duv12 = uv[1] - uv[2];
     Float determinant = duv02[0] * duv12[1] - duv02[1] * duv12[0];
     bool degenerateUV = std::abs(determinant) < 1e-8;
@@ -369,6 +372,7 @@ bool Triangle::CompleteIntersection(const Ray &ray, const Point3f &p0,
     Point2f uvHit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
     // Fill in SurfaceInteraction from triangle hit
     bool flip = reverseOrientation ^ transformSwapsHandedness;
+    // Construct the SurfaceInteraction of the triangle hit
     new (isect) SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
                                    Normal3f(0, 0, 0), Normal3f(0, 0, 0),
                                    Normal3f(Normalize(ng)), ray.time, flip,

@@ -44,6 +44,12 @@ class Triangle : public Shape {
     Bounds3f ObjectBound() const override;
     Bounds3f WorldBound() const override;
     // Triangle Public Methods
+    static void GetDefaultUVs(Point2f uv[3]) {
+        uv[0] = Point2f(0, 0);
+        uv[1] = Point2f(1, 0);
+        uv[2] = Point2f(1, 1);
+    }
+    // Triangle Public Methods
     bool Intersect(const Ray &ray, Float *tHit, SurfaceInteraction *isect,
                    bool testAlphaTexture = true) const override;
     bool IntersectP(const Ray &ray,
@@ -64,6 +70,14 @@ class Triangle : public Shape {
                               const Point3f &p1, const Point3f &p2, Float e0,
                               Float e1, Float e2, Float invDet,
                               SurfaceInteraction *isect) const;
+    // Triangle Public Methods
+    int FaceIndex() const { return faceIndex; }
+    bool FlipsNormal() const {
+        return reverseOrientation ^ transformSwapsHandedness;
+    }
+    bool HasVertexAttributes() const {
+        return !mesh->n.empty() || !mesh->s.empty() || !mesh->uv.empty();
+    }
 
   private:
     // Triangle Private Methods
@@ -73,9 +87,7 @@ class Triangle : public Shape {
             uv[1] = mesh->uv[v[1]];
             uv[2] = mesh->uv[v[2]];
         } else {
-            uv[0] = Point2f(0, 0);
-            uv[1] = Point2f(1, 0);
-            uv[2] = Point2f(1, 1);
+            GetDefaultUVs(uv);
         }
     }
     // Triangle Private Data

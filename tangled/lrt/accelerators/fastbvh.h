@@ -71,7 +71,7 @@ struct FastTriangle {
 struct FastTriangleInfo {
     int faceIndex;
     bool flipNormal;
-    bool plain;
+    bool plain;  // the mesh has no normals, tangents or (u,v) per vertex
 };
 // FastBVHAccel Inline Functions
 template <typename T>

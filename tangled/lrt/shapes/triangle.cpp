@@ -264,7 +264,7 @@ bool Triangle::Intersect(const Ray &ray, Float *tHit,
     Point3f pHit = b0 * p0 + b1 * p1 + b2 * p2;
     Point2f uvHit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
     // Fill in SurfaceInteraction from triangle hit
-    bool flip = reverseOrientation ^ transformSwapsHandedness;
+    bool flip = FlipsNormal();
     // Construct the SurfaceInteraction of the triangle hit
     new (isect) SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
                                    Normal3f(0, 0, 0), Normal3f(0, 0, 0),
@@ -371,7 +371,7 @@ bool Triangle::CompleteIntersection(const Ray &ray, const Point3f &p0,
     Point3f pHit = b0 * p0 + b1 * p1 + b2 * p2;
     Point2f uvHit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
     // Fill in SurfaceInteraction from triangle hit
-    bool flip = reverseOrientation ^ transformSwapsHandedness;
+    bool flip = FlipsNormal();
     // Construct the SurfaceInteraction of the triangle hit
     new (isect) SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
                                    Normal3f(0, 0, 0), Normal3f(0, 0, 0),

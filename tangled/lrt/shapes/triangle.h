@@ -55,6 +55,10 @@ class Triangle : public Shape {
     bool IntersectP(const Ray &ray,
                     bool testAlphaTexture = true) const override;
     // Triangle Public Methods
+    bool FlipsNormal() const {
+        return reverseOrientation ^ transformSwapsHandedness;
+    }
+    // Triangle Public Methods
     Float Area() const override;
     // Triangle Public Methods
     void GetVertices(Point3f *q0, Point3f *q1, Point3f *q2) const {
@@ -72,9 +76,6 @@ class Triangle : public Shape {
                               SurfaceInteraction *isect) const;
     // Triangle Public Methods
     int FaceIndex() const { return faceIndex; }
-    bool FlipsNormal() const {
-        return reverseOrientation ^ transformSwapsHandedness;
-    }
     bool HasVertexAttributes() const {
         return !mesh->n.empty() || !mesh->s.empty() || !mesh->uv.empty();
     }

@@ -186,22 +186,32 @@ static Bounds3f GetChildBox(const FastBVHNode &node, int c) {
     return b;
 }
 // FastBVHAccel Utility Functions
+static bool PassesDegenerateTest(const Point3f &p0, const Point3f &p1,
+                                 const Point3f &p2) {
+    // Reject degenerate triangles
+    Vector3f dp02 = p0 - p2, dp12 = p1 - p2;
+    Vector3f ng = Cross(dp02, dp12);
+    if (ng.LengthSquared() == 0) return false;
+    return true;
+}
+
 static const Triangle *GetTriangle(const Primitive *p) {
     if (typeid(*p) != typeid(GeometricPrimitive)) return nullptr;
     const Shape *s = static_cast<const GeometricPrimitive *>(p)->GetShape();
     if (typeid(*s) != typeid(Triangle)) return nullptr;
-    return static_cast<const Triangle *>(s);
+    const Triangle *tri = static_cast<const Triangle *>(s);
+    Point3f p0, p1, p2;
+    tri->GetVertices(&p0, &p1, &p2);
+    return PassesDegenerateTest(p0, p1, p2) ? tri : nullptr;
 }
 
 static void StoreTriangle(FastTriangle *ft, const Triangle *tri) {
     Point3f q[3];
     tri->GetVertices(&q[0], &q[1], &q[2]);
-    for (int j = 0; j < 3; ++j) {
-        ft->v[j][0] = q[j].x;
-        ft->v[j][1] = q[j].y;
-        ft->v[j][2] = q[j].z;
+    for (int a = 0; a < 3; ++a) {
+        for (int i = 0; i < 3; ++i) ft->c[a][i] = q[i][a];
+        ft->c[a][3] = 0;
     }
-    ft->triangle = tri;
 }
 // FastBVHAccel Utility Functions
 static inline int BinIndex(Float c, Float cMin, Float scale, int nBins) {
@@ -299,14 +309,48 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
                                                 const FastRay &fr,
                                                 const Ray &ray,
                                                 FastTriangleHit *hit) {
+#if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
+    // Compute the edge functions with SSE2 and reject a miss
+    __m128 px = _mm_sub_ps(_mm_load_ps(tri.c[fr.kx]), _mm_set1_ps(fr.o[fr.kx]));
+    __m128 py = _mm_sub_ps(_mm_load_ps(tri.c[fr.ky]), _mm_set1_ps(fr.o[fr.ky]));
+    __m128 pz = _mm_sub_ps(_mm_load_ps(tri.c[fr.kz]), _mm_set1_ps(fr.o[fr.kz]));
+    __m128 xs = _mm_add_ps(px, _mm_mul_ps(_mm_set1_ps(fr.Sx), pz));
+    __m128 ys = _mm_add_ps(py, _mm_mul_ps(_mm_set1_ps(fr.Sy), pz));
+    // Lane i of next holds vertex i + 1, of last vertex i + 2 (modulo 3)
+    __m128 xNext = _mm_shuffle_ps(xs, xs, _MM_SHUFFLE(3, 0, 2, 1));
+    __m128 yNext = _mm_shuffle_ps(ys, ys, _MM_SHUFFLE(3, 0, 2, 1));
+    __m128 xLast = _mm_shuffle_ps(xs, xs, _MM_SHUFFLE(3, 1, 0, 2));
+    __m128 yLast = _mm_shuffle_ps(ys, ys, _MM_SHUFFLE(3, 1, 0, 2));
+    __m128 es = _mm_sub_ps(_mm_mul_ps(xNext, yLast), _mm_mul_ps(yNext, xLast));
+    __m128 zero = _mm_setzero_ps();
+    unsigned negative = unsigned(_mm_movemask_ps(_mm_cmplt_ps(es, zero))) & 7u;
+    unsigned positive = unsigned(_mm_movemask_ps(_mm_cmpgt_ps(es, zero))) & 7u;
+    unsigned zeros = unsigned(_mm_movemask_ps(_mm_cmpeq_ps(es, zero))) & 7u;
+    if (negative != 0 && positive != 0 && zeros == 0) return false;
+    // Unpack the vector lanes into the scalar test's variables
+    alignas(16) float lane[6][4];
+    _mm_store_ps(lane[0], px);
+    _mm_store_ps(lane[1], py);
+    _mm_store_ps(lane[2], pz);
+    _mm_store_ps(lane[3], xs);
+    _mm_store_ps(lane[4], ys);
+    _mm_store_ps(lane[5], es);
+    Point3f p0t(lane[0][0], lane[1][0], lane[2][0]);
+    Point3f p1t(lane[0][1], lane[1][1], lane[2][1]);
+    Point3f p2t(lane[0][2], lane[1][2], lane[2][2]);
+    Float x0 = lane[3][0], x1 = lane[3][1], x2 = lane[3][2];
+    Float y0 = lane[4][0], y1 = lane[4][1], y2 = lane[4][2];
+    Float e0 = lane[5][0], e1 = lane[5][1], e2 = lane[5][2];
+    const Float Sz = fr.Sz;
+#else
     // Translate and permute the vertices with the ray's axes
     const int kx = fr.kx, ky = fr.ky, kz = fr.kz;
-    Point3f p0t(tri.v[0][kx] - fr.o[kx], tri.v[0][ky] - fr.o[ky],
-                tri.v[0][kz] - fr.o[kz]);
-    Point3f p1t(tri.v[1][kx] - fr.o[kx], tri.v[1][ky] - fr.o[ky],
-                tri.v[1][kz] - fr.o[kz]);
-    Point3f p2t(tri.v[2][kx] - fr.o[kx], tri.v[2][ky] - fr.o[ky],
-                tri.v[2][kz] - fr.o[kz]);
+    Point3f p0t(tri.c[kx][0] - fr.o[kx], tri.c[ky][0] - fr.o[ky],
+                tri.c[kz][0] - fr.o[kz]);
+    Point3f p1t(tri.c[kx][1] - fr.o[kx], tri.c[ky][1] - fr.o[ky],
+                tri.c[kz][1] - fr.o[kz]);
+    Point3f p2t(tri.c[kx][2] - fr.o[kx], tri.c[ky][2] - fr.o[ky],
+                tri.c[kz][2] - fr.o[kz]);
     // Shear the vertices with the ray's coefficients
     const Float Sx = fr.Sx, Sy = fr.Sy, Sz = fr.Sz;
     Float x0 = p0t.x + Sx * p0t.z, y0 = p0t.y + Sy * p0t.z;
@@ -316,6 +360,7 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     Float e0 = x1 * y2 - y1 * x2;
     Float e1 = x2 * y0 - y2 * x0;
     Float e2 = x0 * y1 - y0 * x1;
+#endif
     // Test the signs of the edge functions with few branches
     if (sizeof(Float) == sizeof(float) && ((e0 == 0) | (e1 == 0) | (e2 == 0))) {
         e0 = Float(double(x1) * double(y2) - double(y1) * double(x2));
@@ -353,13 +398,6 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
                    (gamma(3) * maxE * maxZs + deltaE * maxZs + deltaZ * maxE) *
                    std::abs(invDet);
     if (!(t > deltaT)) return false;
-    Point3f p0(tri.v[0][0], tri.v[0][1], tri.v[0][2]);
-    Point3f p1(tri.v[1][0], tri.v[1][1], tri.v[1][2]);
-    Point3f p2(tri.v[2][0], tri.v[2][1], tri.v[2][2]);
-    // Reject degenerate triangles
-    Vector3f dp02 = p0 - p2, dp12 = p1 - p2;
-    Vector3f ng = Cross(dp02, dp12);
-    if (ng.LengthSquared() == 0) return false;
     *hit = {t, e0, e1, e2, invDet};
     return true;
 }
@@ -830,16 +868,14 @@ bool FastBVHAccel::Intersect(const Ray &ray,
         // Complete the interaction for the closest triangle hit
         const FastTriangle &ft = triangles[hitTriangle];
         const FastTriangleInfo &info = triangleInfo[hitTriangle];
-        Point3f p0(ft.v[0][0], ft.v[0][1], ft.v[0][2]);
-        Point3f p1(ft.v[1][0], ft.v[1][1], ft.v[1][2]);
-        Point3f p2(ft.v[2][0], ft.v[2][1], ft.v[2][2]);
+        Point3f p0 = ft.Vertex(0), p1 = ft.Vertex(1), p2 = ft.Vertex(2);
         bool completed =
             info.plain
                 ? CompletePlainTriangle(ray, p0, p1, p2, closest, info,
-                                        ft.triangle, isect)
-                : ft.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
-                                                    closest.e1, closest.e2,
-                                                    closest.invDet, isect);
+                                        info.triangle, isect)
+                : info.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
+                                                      closest.e1, closest.e2,
+                                                      closest.invDet, isect);
         if (!completed)
             throw std::logic_error("FastBVHAccel::Intersect: the fast triangle "
                                    "test accepted a degenerate triangle");
@@ -849,10 +885,11 @@ bool FastBVHAccel::Intersect(const Ray &ray,
 }
 // FastBVHAccel Method Definitions
 void FastBVHAccel::StoreTriangleInfo() {
-    triangleInfo.assign(triangles.size(), FastTriangleInfo{0, false, false});
+    triangleInfo.assign(triangles.size(),
+                        FastTriangleInfo{nullptr, 0, false, false});
     for (size_t i = 0; i < triangles.size(); ++i)
-        if (const Triangle *tri = triangles[i].triangle)
-            triangleInfo[i] = {tri->FaceIndex(), tri->FlipsNormal(),
+        if (const Triangle *tri = GetTriangle(primitives[i].get()))
+            triangleInfo[i] = {tri, tri->FaceIndex(), tri->FlipsNormal(),
                                !tri->HasVertexAttributes()};
 }
 // FastBVHAccel Method Definitions

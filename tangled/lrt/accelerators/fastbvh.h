@@ -63,12 +63,13 @@ struct alignas(64) FastBVHNode {
 static_assert(sizeof(FastBVHNode) == (sizeof(Float) == 4 ? 128 : 256),
               "FastBVHNode should fill two cache lines");
 // FastBVHAccel Node Types
-struct FastTriangle {
-    Float v[3][3];
-    const Triangle *triangle;
+struct alignas(16) FastTriangle {
+    Float c[3][4];  // c[axis][vertex]; c[axis][3] is zero
+    Point3f Vertex(int i) const { return Point3f(c[0][i], c[1][i], c[2][i]); }
 };
 // FastBVHAccel Node Types
 struct FastTriangleInfo {
+    const Triangle *triangle;
     int faceIndex;
     bool flipNormal;
     bool plain;  // the mesh has no normals, tangents or (u,v) per vertex

@@ -205,13 +205,16 @@ static const Triangle *GetTriangle(const Primitive *p) {
     return PassesDegenerateTest(p0, p1, p2) ? tri : nullptr;
 }
 
-static void StoreTriangle(FastTriangle *ft, const Triangle *tri) {
+static void StoreTriangle(FastTriangle *ft, FastTriangleInfo *info,
+                          const Triangle *tri) {
     Point3f q[3];
     tri->GetVertices(&q[0], &q[1], &q[2]);
     for (int a = 0; a < 3; ++a) {
         for (int i = 0; i < 3; ++i) ft->c[a][i] = q[i][a];
         ft->c[a][3] = 0;
     }
+    *info = {tri, tri->FaceIndex(), tri->FlipsNormal(),
+             !tri->HasVertexAttributes()};
 }
 // FastBVHAccel Utility Functions
 static inline int BinIndex(Float c, Float cMin, Float scale, int nBins) {
@@ -285,8 +288,10 @@ class AdoptedBinaryTree {
     };
     AdoptedBinaryTree(const BVHAccel &bvh,
                       std::vector<std::shared_ptr<Primitive>> *primitives,
-                      LargeArray<FastTriangle> *triangles)
-        : bvh(bvh), primitives(*primitives), triangles(*triangles) {}
+                      LargeArray<FastTriangle> *triangles,
+                      LargeArray<FastTriangleInfo> *triangleInfo)
+        : bvh(bvh), primitives(*primitives), triangles(*triangles),
+          triangleInfo(*triangleInfo) {}
     bool IsLeaf(const Node &node) const {
         return bvh.Nodes()[node.index].nPrimitives > 0;
     }
@@ -303,6 +308,7 @@ class AdoptedBinaryTree {
     const BVHAccel &bvh;
     std::vector<std::shared_ptr<Primitive>> &primitives;
     LargeArray<FastTriangle> &triangles;
+    LargeArray<FastTriangleInfo> &triangleInfo;
 };
 // FastBVHAccel Utility Functions
 static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
@@ -668,6 +674,7 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
     std::vector<FastBVHBuildPrim> prims;
     prims.reserve(p.size());
     std::vector<FastTriangle> inputTriangles(p.size());
+    std::vector<FastTriangleInfo> inputInfo(p.size());
     FastBox box = FastBox::Empty();
     for (size_t i = 0; i < p.size(); ++i) {
         if (!p[i])
@@ -680,7 +687,7 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
                                int(i), false, 0};
         const Triangle *tri = GetTriangle(p[i].get());
         bp.isTriangle = tri != nullptr;
-        if (tri) StoreTriangle(&inputTriangles[i], tri);
+        if (tri) StoreTriangle(&inputTriangles[i], &inputInfo[i], tri);
         prims.push_back(bp);
         box.Grow(bp.lo, bp.hi);
     }
@@ -692,11 +699,12 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
     // Store the primitives and their triangles in leaf order
     primitives.reserve(prims.size());
     triangles.reserve(prims.size());
+    triangleInfo.reserve(prims.size());
     for (const FastBVHBuildPrim &bp : prims) {
         triangles.push_back(inputTriangles[bp.index]);
+        triangleInfo.push_back(inputInfo[bp.index]);
         primitives.push_back(std::move(p[bp.index]));
     }
-    StoreTriangleInfo();
 }
 // FastBVHAccel Method Definitions
 void SAHBinaryTree::MakeNode(Node *node, int start, int end,
@@ -811,8 +819,9 @@ FastBVHChild AdoptedBinaryTree::Leaf(const Node &node) {
             if ((pass == 0) != (tri != nullptr)) continue;
             primitives.push_back(prim);
             triangles.emplace_back();
+            triangleInfo.emplace_back();
             if (tri) {
-                StoreTriangle(&triangles.back(), tri);
+                StoreTriangle(&triangles.back(), &triangleInfo.back(), tri);
                 leaf.nTriangles++;
             } else {
                 leaf.nOthers++;
@@ -826,12 +835,12 @@ void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
     size_t n = bvh.Primitives().size();
     primitives.reserve(n);
     triangles.reserve(n);
+    triangleInfo.reserve(n);
     nodes.reserve(n);
-    AdoptedBinaryTree binary(bvh, &primitives, &triangles);
+    AdoptedBinaryTree binary(bvh, &primitives, &triangles, &triangleInfo);
     AdoptedBinaryTree::Node binaryRoot = {0};
     SetRoot(ToFastBox(bvh.Nodes()[0].bounds),
             BuildWide(binary, binaryRoot, &nodes));
-    StoreTriangleInfo();
 }
 // FastBVHAccel Method Definitions
 bool FastBVHAccel::Intersect(const Ray &ray,
@@ -882,15 +891,6 @@ bool FastBVHAccel::Intersect(const Ray &ray,
         isect->primitive = primitives[hitTriangle].get();
     }
     return hitOther || hitTriangle >= 0;
-}
-// FastBVHAccel Method Definitions
-void FastBVHAccel::StoreTriangleInfo() {
-    triangleInfo.assign(triangles.size(),
-                        FastTriangleInfo{nullptr, 0, false, false});
-    for (size_t i = 0; i < triangles.size(); ++i)
-        if (const Triangle *tri = GetTriangle(primitives[i].get()))
-            triangleInfo[i] = {tri, tri->FaceIndex(), tri->FlipsNormal(),
-                               !tri->HasVertexAttributes()};
 }
 // FastBVHAccel Method Definitions
 bool FastBVHAccel::IntersectP(const Ray &ray) const {

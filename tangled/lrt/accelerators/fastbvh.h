@@ -118,8 +118,6 @@ class FastBVHAccel : public Aggregate {
     void SetRoot(const FastBox &box, FastBVHChild child);
     // FastBVHAccel Private Methods
     void CopyTree(const BVHAccel &bvh);
-    // FastBVHAccel Private Methods
-    void StoreTriangleInfo();
     // FastBVHAccel Private Data
     int maxPrimsInNode;
     std::vector<std::shared_ptr<Primitive>> primitives;

@@ -124,7 +124,7 @@ class SAHBinaryTree {
 };
 // FastBVHAccel Local Declarations
 constexpr int fastBVHBins = 16;
-constexpr Float fastBVHTraversalCost = 1;
+constexpr Float fastBVHTraversalCost = 3;
 constexpr Float fastBVHIntersectionCost = 1;
 
 struct FastBVHBin {

@@ -25,7 +25,7 @@ plot datafile using 1:2 with linespoints pt 7 ps 1.5 title "BVHAccel", \
 set title "Tracing, single-threaded"
 unset logscale y
 set format y "%g"
-set yrange [0:18]
+set yrange [0:24]
 set ylabel "Mrays/s"
 set key top right font ",17"
 plot datafile using 1:3 with linespoints pt 7 ps 1.5 lc 1 title "BVHAccel, camera", \

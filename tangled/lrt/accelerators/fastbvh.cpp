@@ -199,22 +199,21 @@ static const Triangle *GetTriangle(const Primitive *p) {
     if (typeid(*p) != typeid(GeometricPrimitive)) return nullptr;
     const Shape *s = static_cast<const GeometricPrimitive *>(p)->GetShape();
     if (typeid(*s) != typeid(Triangle)) return nullptr;
-    const Triangle *tri = static_cast<const Triangle *>(s);
-    Point3f p0, p1, p2;
-    tri->GetVertices(&p0, &p1, &p2);
-    return PassesDegenerateTest(p0, p1, p2) ? tri : nullptr;
+    return static_cast<const Triangle *>(s);
 }
 
-static void StoreTriangle(FastTriangle *ft, FastTriangleInfo *info,
+static bool StoreTriangle(FastTriangle *ft, FastTriangleInfo *info,
                           const Triangle *tri) {
     Point3f q[3];
     tri->GetVertices(&q[0], &q[1], &q[2]);
+    if (!PassesDegenerateTest(q[0], q[1], q[2])) return false;
     for (int a = 0; a < 3; ++a) {
         for (int i = 0; i < 3; ++i) ft->c[a][i] = q[i][a];
         ft->c[a][3] = 0;
     }
     *info = {tri, tri->FaceIndex(), tri->FlipsNormal(),
              !tri->HasVertexAttributes()};
+    return true;
 }
 // FastBVHAccel Utility Functions
 static inline int BinIndex(Float c, Float cMin, Float scale, int nBins) {
@@ -309,6 +308,7 @@ class AdoptedBinaryTree {
     std::vector<std::shared_ptr<Primitive>> &primitives;
     LargeArray<FastTriangle> &triangles;
     LargeArray<FastTriangleInfo> &triangleInfo;
+    std::vector<int> others;
 };
 // FastBVHAccel Utility Functions
 static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
@@ -413,7 +413,6 @@ static inline bool CompletePlainTriangle(const Ray &ray, const Point3f &p0,
                                          const Point3f &p2,
                                          const FastTriangleHit &hit,
                                          const FastTriangleInfo &info,
-                                         const Triangle *shape,
                                          SurfaceInteraction *isect) {
     Float e0 = hit.e0, e1 = hit.e1, e2 = hit.e2, invDet = hit.invDet;
     // Reject degenerate triangles
@@ -455,7 +454,7 @@ static inline bool CompletePlainTriangle(const Ray &ray, const Point3f &p0,
                                    Normal3f(0, 0, 0), Normal3f(0, 0, 0),
                                    Normal3f(Normalize(ng)), ray.time, flip,
                                    faceIndex);
-    isect->shape = shape;
+    isect->shape = info.triangle;
     return true;
 }
 // FastBVHAccel Traversal Function
@@ -686,8 +685,8 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
                                {b.pMax.x, b.pMax.y, b.pMax.z, b.pMax.z},
                                int(i), false, 0};
         const Triangle *tri = GetTriangle(p[i].get());
-        bp.isTriangle = tri != nullptr;
-        if (tri) StoreTriangle(&inputTriangles[i], &inputInfo[i], tri);
+        bp.isTriangle =
+            tri && StoreTriangle(&inputTriangles[i], &inputInfo[i], tri);
         prims.push_back(bp);
         box.Grow(bp.lo, bp.hi);
     }
@@ -810,23 +809,29 @@ FastBVHAccel::FastBVHAccel(const BVHAccel &bvh)
 // FastBVHAccel Method Definitions
 FastBVHChild AdoptedBinaryTree::Leaf(const Node &node) {
     const LinearBVHNode &bvhNode = bvh.Nodes()[node.index];
+    const std::shared_ptr<Primitive> *prims =
+        &bvh.Primitives()[bvhNode.primitivesOffset];
     FastBVHChild leaf = {uint32_t(primitives.size()), 0, 0};
-    for (int pass = 0; pass < 2; ++pass)
-        for (int i = 0; i < bvhNode.nPrimitives; ++i) {
-            const std::shared_ptr<Primitive> &prim =
-                bvh.Primitives()[bvhNode.primitivesOffset + i];
-            const Triangle *tri = GetTriangle(prim.get());
-            if ((pass == 0) != (tri != nullptr)) continue;
-            primitives.push_back(prim);
-            triangles.emplace_back();
-            triangleInfo.emplace_back();
-            if (tri) {
-                StoreTriangle(&triangles.back(), &triangleInfo.back(), tri);
-                leaf.nTriangles++;
-            } else {
-                leaf.nOthers++;
-            }
+    others.clear();
+    for (int i = 0; i < bvhNode.nPrimitives; ++i) {
+        FastTriangle ft;
+        FastTriangleInfo info;
+        const Triangle *tri = GetTriangle(prims[i].get());
+        if (tri && StoreTriangle(&ft, &info, tri)) {
+            primitives.push_back(prims[i]);
+            triangles.push_back(ft);
+            triangleInfo.push_back(info);
+            leaf.nTriangles++;
+        } else {
+            others.push_back(i);
         }
+    }
+    for (int i : others) {
+        primitives.push_back(prims[i]);
+        triangles.emplace_back();
+        triangleInfo.emplace_back();
+        leaf.nOthers++;
+    }
     return leaf;
 }
 // FastBVHAccel Method Definitions
@@ -880,8 +885,7 @@ bool FastBVHAccel::Intersect(const Ray &ray,
         Point3f p0 = ft.Vertex(0), p1 = ft.Vertex(1), p2 = ft.Vertex(2);
         bool completed =
             info.plain
-                ? CompletePlainTriangle(ray, p0, p1, p2, closest, info,
-                                        info.triangle, isect)
+                ? CompletePlainTriangle(ray, p0, p1, p2, closest, info, isect)
                 : info.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
                                                       closest.e1, closest.e2,
                                                       closest.invDet, isect);

@@ -55,7 +55,7 @@ $(DIR)/obj/lib/%.o: $(SRC)/%.cpp
 
 $(DIR)/obj/tests/%.o: tests/%.cpp
 	@mkdir -p $(@D)
-	$(CXX) $(CXXFLAGS) -I$(SRC) -MMD -MP -c $< -o $@
+	$(CXX) $(CXXFLAGS) -I$(SRC) -Itests -MMD -MP -c $< -o $@
 
 define test_binary
 $(DIR)/tests/ch$(1): $(patsubst tests/%.cpp,$(DIR)/obj/tests/%.o,$(wildcard \

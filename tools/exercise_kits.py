@@ -372,7 +372,7 @@ def scan_tests(directory):
             for n, text in enumerate(f, 1):
                 match = exercises.TEST_MACRO.match(text)
                 if match:
-                    found.append((match.group(1), match.group(2), path, n))
+                    found.append((match.group(2), match.group(3), path, n))
     return found
 
 

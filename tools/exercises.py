@@ -51,8 +51,8 @@ ATTRIBUTE = re.compile(r'''\s*(?:\#(?P<id>[^\s}]+)|\.(?P<cls>[^\s}]+)|(?P<key>[\
                            (?:"(?P<dq>(?:[^"\\]|\\.)*)"|'(?P<sq>[^']*)'|(?P<bare>[^\s"'}]+)))''',
                        re.VERBOSE)
 EXERCISE_ID = re.compile(r'^ex-(\d+)\.(\d+)$')
-TEST_MACRO = re.compile(r'^\s*(?:TEST|TEST_F|TEST_P|TYPED_TEST|TYPED_TEST_P)\s*\(\s*(\w+)\s*,'
-                        r'\s*(\w+)\s*\)')
+TEST_MACRO = re.compile(r'^\s*(TEST|TEST_F|TEST_P|TYPED_TEST|TYPED_TEST_P|EXERCISE_TEST)\s*\('
+                        r'\s*(\w+)\s*,\s*(\w+)\s*\)')
 EXERCISE_SUITE = re.compile(r'(?:^|/)Ex(\d+)_(\d+)_\w+$')
 LOOKS_LIKE_EXERCISE_SUITE = re.compile(r'(?:^|/)Ex\d')
 CHAPTER_FILE = re.compile(r'^(\d\d)-[^/]*\.md$')
@@ -529,7 +529,8 @@ class Book:
                 for n, text in enumerate(f, 1):
                     match = TEST_MACRO.match(text)
                     if match:
-                        found.append((match.group(1), match.group(2), path, n))
+                        found.append((match.group(2), match.group(3), path, n,
+                                      match.group(1)))
         return found
 
     def check_tests(self):
@@ -539,7 +540,7 @@ class Book:
                 continue
             for hidden, directory in ((False, 'tests/ch%s' % chapter.number),
                                       (True, 'tests/hidden/ch%s' % chapter.number)):
-                for suite, name, path, line in self.scan_tests(directory):
+                for suite, name, path, line, macro in self.scan_tests(directory):
                     if hidden:
                         self.hidden.append((suite, name, path, line))
                     else:
@@ -563,6 +564,12 @@ class Book:
                                    % (suite, exercise_id, exercise.chapter,
                                       'hidden/' if hidden else '', exercise.chapter))
                     else:
+                        if macro != 'EXERCISE_TEST':
+                            self.error(path, line, 'test %s.%s of exercise %s is declared '
+                                       'with %s: declare it with EXERCISE_TEST and reach the '
+                                       'exercise\'s code through its exercise calls '
+                                       '(tests/calls/calls.h)' % (suite, name, exercise_id,
+                                                                  macro))
                         (exercise.hidden_tests if hidden else
                          exercise.public_tests).append((suite, name, path, line))
             for exercise in chapter.exercises:

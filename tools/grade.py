@@ -49,12 +49,10 @@ import argparse
 import concurrent.futures
 import csv
 import difflib
-import fcntl
-import hashlib
 import json
 import os
 import re
-import resource
+import secrets
 import shutil
 import signal
 import subprocess
@@ -69,6 +67,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import exercises  # noqa: E402
+import grade_build  # noqa: E402
+import sandbox  # noqa: E402
 
 CHAPTER_NAME = re.compile(r'^(\d\d)-[^/\\]*\.md$')
 MAX_FILES = 2000              # members looked at in a submission
@@ -356,81 +356,69 @@ def check_structure(reference, student, student_name, allow=False):
     return problems, changes, plan
 
 
-def splice(reference, plan, student_name, reference_name):
-    """The reference chapter with the student's solution regions (or stubs).
-    Returns (text, line map: output line -> (file, line))."""
-    starts = {r.line(r.begin): r for r in reference.regions}
+def compose(base, base_name, fills):
+    """The chapter `base` (parsed) with some of its solution regions filled
+    anew: fills maps a region of base to the lines (file, line, text) to put
+    between its markers; other regions stay as they are. A filled region's
+    stub block is dropped. Returns (text, line map: output line -> (file, line))."""
+    starts = {r.line(r.begin): r for r in base.regions if r in fills}
     lines, where = [], []
     n = 1
-    ref_lines = reference.lines
-    while n <= len(ref_lines):
+    while n <= len(base.lines):
         region = starts.get(n)
         if region is None:
-            lines.append(ref_lines[n - 1])
-            where.append((reference_name, n))
+            lines.append(base.lines[n - 1])
+            where.append((base_name, n))
             n += 1
             continue
-        lines.append(ref_lines[n - 1])        # // BEGIN SOLUTION
-        where.append((reference_name, n))
-        filled = plan.get(id(region))
-        if filled is None:
-            for text in exercises.stub_code(region):
-                lines.append(text)
-                where.append((reference_name + ' (stub)', n))
-        else:
-            for line, text in filled:
-                lines.append(text)
-                where.append((student_name, line))
+        lines.append(base.lines[n - 1])        # // BEGIN SOLUTION
+        where.append((base_name, n))
+        for name, line, text in fills[region]:
+            lines.append(text)
+            where.append((name, line))
         end = region.line(region.end)
-        lines.append(ref_lines[end - 1])      # // END SOLUTION
-        where.append((reference_name, end))
+        lines.append(base.lines[end - 1])      # // END SOLUTION
+        where.append((base_name, end))
         n = (region.line(region.stub_end) if region.stub_end is not None else end) + 1
-    return '\n'.join(lines), where
+    return '\n'.join(lines) + '\n', where
+
+
+def exercise_text(reference, student, plan, exercise, student_name, allow):
+    """Chapter text for grading `exercise` alone: the student's code for its
+    regions, the book's solutions for every other exercise's. By default the
+    book's text is the base (code the student changed outside the regions is
+    not used); with `allow` (--allow-changes-outside-exercises), the
+    student's. A region the student deleted gets the stub."""
+    mine = set(exercise.fragments)
+    if not allow:
+        fills = {}
+        for region in reference.regions:
+            if region.chunk.name not in mine:
+                continue
+            filled = plan.get(id(region))
+            if filled is None:
+                fills[region] = [(reference.path + ' (stub)', region.line(region.begin), t)
+                                 for t in exercises.stub_code(region)]
+            else:
+                fills[region] = [(student_name, line, t) for line, t in filled]
+        return compose(reference, reference.path, fills)
+    # The student's chapter, with the k-th region of each chunk name that
+    # belongs to another exercise replaced by the book's k-th.
+    fills, seen = {}, {}
+    for region in student.regions:
+        name = region.chunk.name
+        k = seen.get(name, 0)
+        seen[name] = k + 1
+        if name in mine:
+            continue
+        ref = [r for r in reference.regions if r.chunk.name == name]
+        if k < len(ref):
+            fills[region] = [(reference.path, line, t) for line, t in ref[k].solution]
+    return compose(student, student_name, fills)
 
 
 # ---------------------------------------------------------------------------
-# Building, with a cache shared by submissions whose code is the same
-
-def run(cmd, cwd, timeout, env=None):
-    try:
-        proc = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, errors='replace',
-                              timeout=timeout, env=env, start_new_session=True)
-        return proc.returncode, proc.stdout + proc.stderr
-    except subprocess.TimeoutExpired as e:
-        out = e.stdout or ''
-        if isinstance(out, bytes):
-            out = out.decode(errors='replace')
-        return 'timeout', out
-
-
-def tree_hash(directory, extra):
-    h = hashlib.sha256(extra.encode())
-    for top, dirs, files in os.walk(directory):
-        dirs.sort()
-        for name in sorted(files):
-            path = os.path.join(top, name)
-            h.update(os.path.relpath(path, directory).encode() + b'\0')
-            with open(path, 'rb') as f:
-                # #line directives name chapter lines: prose edits must not
-                # force a rebuild, so they are left out of the key.
-                for line in f:
-                    if not line.startswith(b'#line '):
-                        h.update(line)
-            h.update(b'\0')
-    return h.hexdigest()[:24]
-
-
-def test_sources_hash(root, number):
-    h = hashlib.sha256()
-    for d in ('tests/ch%s' % number, 'tests/hidden/ch%s' % number):
-        full = os.path.join(root, d)
-        if os.path.isdir(full):
-            for name in sorted(os.listdir(full)):
-                h.update(name.encode())
-                with open(os.path.join(full, name), 'rb') as f:
-                    h.update(f.read())
-    return h.hexdigest()
-
+# Building and judging
 
 def compiler_errors(output, rename):
     """The first error lines of a build, with paths rewritten by rename;
@@ -456,70 +444,6 @@ def compiler_errors(output, rename):
     return found
 
 
-def build_chapter(args, workdir, chapter_files, number, rename):
-    """Builds chapter `number`'s test binaries. chapter_files are paths
-    relative to workdir. Returns (binaries dict or None, errors list)."""
-    root = args.root
-    for link in ('tools', 'tests'):
-        target = os.path.join(workdir, link)
-        if not os.path.exists(target):
-            os.symlink(os.path.join(root, link), target)
-    build = os.path.join(workdir, 'build')
-    common = ['make', '--no-print-directory', '-f', 'tools/asof.mk', '-f', 'tools/hidden.mk',
-              'CHAPTERS=' + ' '.join(chapter_files), 'BUILD=' + build, 'ASOF=' + number,
-              'ONLY=' + number, 'HIDDEN=tests/hidden', 'CXXFLAGS=' + args.cxxflags]
-    env = dict(os.environ)
-    for var in ('MAKEFLAGS', 'MAKELEVEL', 'MFLAGS', 'FLOAT', 'SANITIZE'):
-        env.pop(var, None)
-    code, out = run(common + ['tangle'], workdir, args.compile_time_limit, env)
-    if code != 0:
-        return None, compiler_errors(out, rename) or ['the tangle failed:'] + \
-            out.strip().splitlines()[-5:]
-    src = os.path.join(build, 'float', 'asof', number, 'src')
-    key = tree_hash(src, args.cxxflags + '\0' + test_sources_hash(root, number))
-    cache = os.path.join(args.cache, key)
-    os.makedirs(args.cache, exist_ok=True)
-    with open(cache + '.lock', 'w') as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        if os.path.isfile(os.path.join(cache, 'ok')):
-            return {'public': os.path.join(cache, 'ch' + number),
-                    'hidden': os.path.join(cache, 'hidden-ch' + number)}, []
-        code, out = run(common + ['-j%d' % args.build_jobs, 'lib', 'tests', 'hidden-tests'],
-                        workdir, args.compile_time_limit, env)
-        if code == 'timeout':
-            return None, ['the build took longer than %d s' % args.compile_time_limit]
-        if code != 0:
-            return None, compiler_errors(out, rename) or out.strip().splitlines()[-10:]
-        d = os.path.join(build, 'float', 'asof', number)
-        tmp = cache + '.tmp'
-        shutil.rmtree(tmp, ignore_errors=True)
-        os.makedirs(tmp)
-        shutil.copy2(os.path.join(d, 'tests', 'ch' + number), os.path.join(tmp, 'ch' + number))
-        hidden = os.path.join(d, 'hidden', 'ch' + number)
-        if os.path.exists(hidden):
-            shutil.copy2(hidden, os.path.join(tmp, 'hidden-ch' + number))
-        open(os.path.join(tmp, 'ok'), 'w').close()
-        shutil.rmtree(cache, ignore_errors=True)
-        os.rename(tmp, cache)
-        return {'public': os.path.join(cache, 'ch' + number),
-                'hidden': os.path.join(cache, 'hidden-ch' + number)}, []
-
-
-# ---------------------------------------------------------------------------
-# Running one test
-
-def limits(memory_mb, time_limit):
-    def apply():
-        os.setsid()
-        if memory_mb:
-            resource.setrlimit(resource.RLIMIT_AS, (memory_mb << 20, memory_mb << 20))
-        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-        resource.setrlimit(resource.RLIMIT_FSIZE, (64 << 20, 64 << 20))
-        cpu = int(time_limit) + 2
-        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
-    return apply
-
-
 def signal_name(number):
     try:
         return signal.Signals(number).name
@@ -527,78 +451,49 @@ def signal_name(number):
         return 'signal %d' % number
 
 
-def run_test(binary, suite, name, args):
-    """Returns (status, message, output)."""
-    if not binary or not os.path.exists(binary):
-        return 'NOT-RUN', 'the test binary was not built', ''
-    full = '%s.%s' % (suite, name)
-    with tempfile.TemporaryDirectory(prefix='lrt-test-') as tmp:
-        report = os.path.join(tmp, 'report-%s.json' % os.urandom(8).hex())
-        out_path = os.path.join(tmp, 'output.txt')
-        work = os.path.join(tmp, 'cwd')
-        os.mkdir(work)
-        env = {'PATH': '/usr/bin:/bin', 'HOME': work, 'TMPDIR': work, 'LANG': 'C.UTF-8'}
-        start = time.time()
-        with open(out_path, 'wb') as out:
-            proc = subprocess.Popen([binary, '--gtest_filter=' + full,
-                                     '--gtest_output=json:' + report], cwd=work, env=env,
-                                    stdin=subprocess.DEVNULL, stdout=out, stderr=out,
-                                    preexec_fn=limits(args.memory_limit, args.time_limit))
-            try:
-                code = proc.wait(timeout=args.time_limit)
-            except subprocess.TimeoutExpired:
-                code = 'timeout'
-            try:
-                os.killpg(proc.pid, signal.SIGKILL)   # the test and anything it started
-            except OSError:
-                pass
-            if code == 'timeout':
-                proc.wait()
-        with open(out_path, 'rb') as f:
-            output = f.read(MAX_OUTPUT).decode(errors='replace')
-        elapsed = time.time() - start
-        oom_text = 'std::bad_alloc' in output or 'bad_alloc' in output
-        if code == 'timeout':
-            return 'TIMEOUT', 'killed after the time limit of %g s' % args.time_limit, output
-        found = None
+def judge_exercise(args, judge, worker, results, secret):
+    """Runs the judge on the tests of one exercise (results) against its
+    worker, and fills in their statuses from the judge's own report."""
+    with tempfile.TemporaryDirectory(prefix='lrt-judge-') as tmp:
+        argv_file = os.path.join(tmp, 'worker.argv')
+        with open(argv_file, 'w') as f:
+            f.write('\n'.join(sandbox.worker_command(
+                worker, memory_mb=args.memory_limit, cpu_seconds=args.cpu_limit)) + '\n')
+        report = os.path.join(tmp, 'results.jsonl')
+        log_path = os.path.join(tmp, 'worker.log')
+        names = ':'.join(r.full for r in results)
+        cmd = [judge, '--lrt-worker=' + argv_file, '--lrt-secret=%d' % secret,
+               '--lrt-call-timeout=%g' % args.time_limit, '--lrt-worker-log=' + log_path,
+               '--lrt-results=' + report, '--gtest_filter=' + names,
+               '--gtest_shuffle', '--gtest_random_seed=%d' % (secret % 99999 + 1)]
+        budget = args.exercise_time_limit
+        try:
+            proc = subprocess.run(cmd, stdin=subprocess.DEVNULL, capture_output=True,
+                                  timeout=budget, start_new_session=True)
+            ended = None if proc.returncode in (0, 1) else \
+                'the judge ended with status %d' % proc.returncode
+        except subprocess.TimeoutExpired:
+            ended = 'the exercise took longer than %d s in all' % budget
+        found = {}
         try:
             with open(report, encoding='utf-8') as f:
-                data = json.load(f)
-            for s in data.get('testsuites', []):
-                for t in s.get('testsuite', []):
-                    if s.get('name') == suite and t.get('name') == name:
-                        found = t
-        except (OSError, ValueError, AttributeError):
-            data = None
-        if found is not None and found.get('result') == 'SKIPPED':
-            return 'FAIL', 'the test was skipped', output
-        if found is not None and found.get('status') == 'RUN' and \
-                found.get('result') == 'COMPLETED':
-            failures = found.get('failures') or []
-            if not failures:
-                return 'PASS', '', output
-            message = '\n'.join(f.get('failure', '') for f in failures)
-            if 'bad_alloc' in message:
-                return 'OOM', 'out of memory (std::bad_alloc; limit %d MB)' % \
-                    args.memory_limit, message
-            return 'FAIL', message, output
-        if data is not None and found is None:
-            return 'NOT-RUN', 'the test binary has no test %s' % full, output
-        if isinstance(code, int) and code < 0:
-            sig = -code
-            if oom_text:
-                return 'OOM', 'out of memory (std::bad_alloc; limit %d MB), then %s' % (
-                    args.memory_limit, signal_name(sig)), output
-            if sig == signal.SIGXCPU:
-                return 'TIMEOUT', 'CPU time limit exceeded (%.1f s)' % elapsed, output
-            if sig == signal.SIGKILL and args.memory_limit:
-                return 'CRASH', 'killed (SIGKILL; out of memory?)', output
-            return 'CRASH', 'crashed with %s' % signal_name(sig), output
-        if oom_text:
-            return 'OOM', 'out of memory (std::bad_alloc; limit %d MB)' % args.memory_limit, \
-                output
-        return 'FAIL', 'exited (status %s) before reporting a result: a call to exit()?' % \
-            code, output
+                for line in f:
+                    test = json.loads(line)
+                    found[test['test']] = test
+        except (OSError, ValueError, KeyError, TypeError):
+            pass
+        for r in results:
+            test = found.get(r.full)
+            if test is None:
+                r.status = 'NOT-RUN' if ended is None else 'TIMEOUT'
+                r.message = ended or 'the judge has no test %s' % r.full
+                continue
+            failures = [str(f) for f in test.get('failures') or []]
+            if test.get('status') in ('CRASH', 'TIMEOUT', 'OOM'):
+                r.status = test['status']
+            else:
+                r.status = 'PASS' if test.get('passed') is True and not failures else 'FAIL'
+            r.message = '\n'.join(failures)
 
 
 # ---------------------------------------------------------------------------
@@ -876,92 +771,87 @@ def grade(args, path, out):
 
 
 def grade_chapter(args, book, chapter, submitted, ref_paths, report):
+    """Grades each exercise of the chapter on its own: its worker holds the
+    student's code for that exercise and the book's for every other one, and
+    the chapter's judge (the book's code) runs the exercise's tests against it."""
     root = args.root
     number = chapter.number
     student_name, data = submitted
     results = [r for r in report.results if r.chapter == number]
     for r in results:
         r.message = 'not run'
+    allow = args.allow_changes_outside_exercises
     with tempfile.TemporaryDirectory(prefix='lrt-grade-') as work:
-        os.makedirs(os.path.join(work, 'chapters'))
-        os.makedirs(os.path.join(work, 'student', 'chapters'))
-        student_copy = os.path.join(work, 'student', 'chapters', os.path.basename(chapter.path))
+        student_copy = os.path.join(work, 'student', os.path.basename(chapter.path))
+        os.makedirs(os.path.dirname(student_copy))
         with open(student_copy, 'wb') as f:
             f.write(data)
         try:
-            text = data.decode('utf-8')
-        except UnicodeDecodeError:
-            text = None
-        notes = []
-        if text is None:
-            notes.append('`%s` is not UTF-8 text' % student_name)
-            student = None
-        else:
+            data.decode('utf-8')
             student, _ = parse_chapter(student_copy)
-        reference = chapter
-        line_map = None
-        if student is None:
-            plan = {}
-            problems, changes = [], []
-        else:
-            problems, changes, plan = check_structure(reference, student, student_name,
-                                                      args.allow_changes_outside_exercises)
-        if changes and args.allow_changes_outside_exercises:
-            chapter_text = text
+            problems, changes, plan = check_structure(chapter, student, student_name, allow)
+            notes = []
+        except UnicodeDecodeError:
+            student, problems, changes, plan = None, [], [], {}
+            notes = ['`%s` is not UTF-8 text: every exercise is graded as not done'
+                     % student_name]
+        if changes and allow:
             notes.append('Code outside the exercises was changed (allowed; graded with '
                          'your code):')
-        elif student is not None and not changes and not problems:
-            chapter_text = text
-        else:
-            chapter_text, line_map = splice(reference, plan, student_name, chapter.path)
-            if changes:
-                notes.append('**Warning**: code outside the exercises was changed; the '
-                             'book\'s code is used there instead of yours:')
+        elif changes:
+            notes.append('**Warning**: code outside the exercises was changed; the '
+                         'book\'s code is used there instead of yours:')
         notes += ['- ' + p for p in problems] + ['- ' + c for c in changes]
         report.notes += ['', '### Chapter %s (`%s`)' % (number, student_name)] + \
             (notes or ['Structure: as in the book.'])
-        files = []
-        for p in ref_paths:
-            if exercises.chapter_number(p) > number:
-                continue
-            target = os.path.join(work, p)
-            if p == chapter.path:
-                with open(target, 'w', encoding='utf-8') as f:
-                    f.write(chapter_text)
+        report.notes.append('Each exercise is built with your code for it and the book\'s '
+                            'code for the others, and your code ran %s.'
+                            % sandbox.describe())
+        report.write()
+        judge = grade_build.judge(args.cache, root, number, jobs=args.build_jobs)
+        builder = grade_build.WorkerBuild(args.cache, root, number, args.cxxflags.split(),
+                                          jobs=args.build_jobs)
+        earlier = [p for p in ref_paths if exercises.chapter_number(p) < number]
+        for exercise in chapter.exercises:
+            mine = [r for r in results if r.exercise == exercise.id]
+            if student is None:
+                text, line_map = exercise_text(chapter, None, {}, exercise, student_name,
+                                               False)
             else:
-                shutil.copy(os.path.join(root, p), target)
-            files.append(p)
+                text, line_map = exercise_text(chapter, student, plan, exercise,
+                                               student_name, allow and bool(changes))
+            tree = os.path.join(work, exercise.id)
+            os.makedirs(os.path.join(tree, 'chapters'))
+            for p in earlier:
+                shutil.copy(os.path.join(root, p), os.path.join(tree, p))
+            with open(os.path.join(tree, chapter.path), 'w', encoding='utf-8') as f:
+                f.write(text)
+            files = [os.path.basename(p) for p in earlier + [chapter.path]]
 
-        def rename(path, line, col):
-            col = ':' + col if col else ''
-            if path.endswith(chapter.path):
-                if line_map is None:
-                    return '%s:%d%s' % (student_name, line, col)
-                if 1 <= line <= len(line_map):
+            def rename(path, line, col, line_map=line_map):
+                col = ':' + col if col else ''
+                if path.endswith(chapter.path) and 1 <= line <= len(line_map):
                     f, n = line_map[line - 1]
                     return '%s:%d%s' % (f, n, col)
-            if 'tests/hidden/' in path:
-                return '(a hidden test)'
-            m = re.search(r'(tests/ch\d+/.*|chapters/.*)$', path)
-            if m and m.group(1).startswith('chapters/'):
-                return '%s:%d%s (the book\'s text)' % (m.group(1), line, col)
-            return '%s:%d%s' % (m.group(1) if m else os.path.basename(path), line, col)
+                m = re.search(r'(chapters/.*|tests/.*|lrt/.*)$', path)
+                if m and m.group(1).startswith('chapters/'):
+                    return '%s:%d%s (the book\'s text)' % (m.group(1), line, col)
+                return '%s:%d%s' % (m.group(1) if m else os.path.basename(path), line, col)
 
-        report.write()
-        binaries, errors = build_chapter(args, work, files, number, rename)
-    if binaries is None:
-        message = 'chapter %s does not compile: %s' % (number, '\n'.join(errors))
-        report.notes += ['', '**Compile error in chapter %s** (all its exercises score 0):'
-                         % number, '```', fence_safe('\n'.join(errors)), '```']
-        for r in results:
-            r.status, r.message = 'COMPILE-ERROR', message
-        report.write()
-        return
-    for r in results:
-        status, message, output = run_test(binaries['hidden' if r.hidden else 'public'],
-                                           r.suite, r.name, args)
-        r.status, r.message, r.output = status, message, output
-        report.write()
+            try:
+                worker = builder.build(os.path.join(tree, 'chapters'), files, exercise.id)
+            except grade_build.BuildError as e:
+                errors = compiler_errors(e.output, rename) or \
+                    e.output.strip().splitlines()[-10:]
+                for r in mine:
+                    r.status = 'COMPILE-ERROR'
+                    r.message = '%s does not compile: %s' % (exercise.id, '\n'.join(errors))
+                report.notes += ['', '**Compile error in %s** (its tests score 0):'
+                                 % exercise.id, '```', fence_safe('\n'.join(errors)), '```']
+                report.write()
+                continue
+            judge_exercise(args, judge, worker, mine, args.secret)
+            report.write()
 
 
 # ---------------------------------------------------------------------------
@@ -988,10 +878,17 @@ def grade_batch(args):
     # on the same set (and a wrong --chapters stops the batch before it starts).
     _, book = load_book(args.root)
     chapters = graded_chapters(book, args.chapters, args.root)
+    # One secret for the whole batch: every student's code answers the same
+    # cases.
     forwarded = ['--root', args.root, '--cache', args.cache, '--time-limit',
                  str(args.time_limit), '--memory-limit', str(args.memory_limit),
+                 '--cpu-limit', str(args.cpu_limit),
+                 '--exercise-time-limit', str(args.exercise_time_limit),
+                 '--seed', str(args.secret),
                  '--compile-time-limit', str(args.compile_time_limit),
                  '--cxxflags', args.cxxflags, '--build-jobs', '1']
+    if args.allow_no_sandbox:
+        forwarded.append('--allow-no-sandbox')
     if chapters:    # none: the kit chose no chapter with exercises; so will each child
         forwarded += ['--chapters', ' '.join(chapters)]
     if args.allow_changes_outside_exercises:
@@ -1010,8 +907,9 @@ def grade_batch(args):
         target = targets[path]
         shutil.rmtree(target, ignore_errors=True)   # never read an old result
         t0 = time.time()
-        code, output = run([sys.executable, os.path.abspath(__file__), path, '--out', target,
-                            '--quiet'] + forwarded, None, args.submission_time_limit)
+        code, output = grade_build.run([sys.executable, os.path.abspath(__file__), path,
+                                        '--out', target, '--quiet'] + forwarded,
+                                       timeout=args.submission_time_limit)
         return os.path.basename(target), target, code, output, time.time() - t0
 
     workers = max(1, min(2, args.workers))
@@ -1064,7 +962,18 @@ def main(argv=None):
     parser.add_argument('--out', help='output directory (default build/grade/NAME)')
     parser.add_argument('--root', default=ROOT, help='the book (default: this repository)')
     parser.add_argument('--cache', help='build cache (default ROOT/build/grade/cache)')
-    parser.add_argument('--time-limit', type=float, default=10, help='seconds per test')
+    parser.add_argument('--time-limit', type=float, default=10,
+                        help='seconds the student\'s code may take to answer one call')
+    parser.add_argument('--cpu-limit', type=int, default=300,
+                        help='CPU seconds of one worker process')
+    parser.add_argument('--exercise-time-limit', type=int, default=900,
+                        help='seconds for all the tests of one exercise')
+    parser.add_argument('--seed', type=int,
+                        help='the secret that draws the random cases (default: new '
+                        'each time; give the one a grading used to repeat it)')
+    parser.add_argument('--allow-no-sandbox', action='store_true',
+                        help='grade even where neither bubblewrap nor an unprivileged '
+                        'user can isolate the student\'s code')
     parser.add_argument('--memory-limit', type=int, default=1024,
                         help='MB of address space per test (0: none)')
     parser.add_argument('--compile-time-limit', type=int, default=900)
@@ -1083,6 +992,16 @@ def main(argv=None):
     args.root = os.path.abspath(args.root)
     args.cache = os.path.abspath(args.cache or os.path.join(args.root, 'build', 'grade',
                                                             'cache'))
+    if args.seed is None:
+        args.secret = secrets.randbits(62)
+    else:
+        args.secret = args.seed
+    if sandbox.isolation() == 'none' and not args.allow_no_sandbox:
+        parser.error('the student\'s code cannot be isolated here (no working bubblewrap, '
+                     'and not root): install bubblewrap, run as root, or give '
+                     '--allow-no-sandbox for a grade that the code could forge')
+    if sandbox.isolation() == 'unprivileged user':
+        sandbox.protect([os.path.join(args.root, 'tests', 'hidden'), args.cache])
     if args.batch:
         if not os.path.isdir(args.batch):
             parser.error('--batch %s is not a directory' % args.batch)

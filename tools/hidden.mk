@@ -23,7 +23,7 @@ list-hidden-tests:
 
 $(DIR)/obj/hidden/%.o: $(HIDDEN)/%.cpp
 	@mkdir -p $(@D)
-	$(CXX) $(CXXFLAGS) -I$(SRC) -MMD -MP -c $< -o $@
+	$(CXX) $(CXXFLAGS) -I$(SRC) -Itests -MMD -MP -c $< -o $@
 
 define hidden_binary
 $(DIR)/hidden/ch$(1): $(patsubst $(HIDDEN)/%.cpp,$(DIR)/obj/hidden/%.o,$(wildcard \

@@ -3,9 +3,12 @@
 
     tools/tangle.py --out DIR [--line-directives] CHAPTER.md...
 
-Roots are found with noroots; each is extracted with notangle and written
-through cpif, so a file whose text did not change keeps its mtime and make
-rebuilds only what changed. Files in DIR that are no longer roots are removed,
+The chapters go through noweb's markup and the filters once; each root is
+then extracted from that stream with noweb's nt (what notangle does, without
+parsing every chapter again per root) and written through cpif, so a file
+whose text did not change keeps its mtime and make rebuilds only what
+changed. The roots are the chunks defined and never used, as noroots finds
+them. Files in DIR that are no longer roots are removed,
 so DIR is exactly what the chapters tangle to.
 
 --line-directives tangles for the compiler: #line directives point every
@@ -21,10 +24,12 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+NOWEB = '/usr/lib/noweb'
 LINE_FORMAT = '#line %L "%F"%N'
 # Exercise markers (// BEGIN SOLUTION ...) and stub blocks never reach the
 # tangle: see tools/exercise_filter.py and docs/exercises.md.
-EXERCISES_FILTER = ['-filter', 'python3 ' + os.path.join(HERE, 'exercise_filter.py')]
+EXERCISES_FILTER = [sys.executable, os.path.join(HERE, 'exercise_filter.py')]
+COMMENTS_FILTER = [sys.executable, os.path.join(HERE, 'fragment_comments.py')]
 
 
 def fail(message):
@@ -33,29 +38,37 @@ def fail(message):
 
 def run(cmd, stdin=None):
     proc = subprocess.run(cmd, input=stdin, capture_output=True, text=True)
-    # notangle reports an undefined chunk on stderr and still writes output:
+    # nt reports an undefined chunk on stderr and still writes output:
     # anything on stderr is an error here, never a warning to scroll past.
     if proc.returncode != 0 or proc.stderr.strip():
-        fail('%s failed:\n%s' % (' '.join(cmd[:2]), proc.stderr.strip()))
+        name = os.path.basename(cmd[1] if cmd[0] == sys.executable else cmd[0])
+        fail('%s failed:\n%s' % (name, proc.stderr.strip()))
     return proc.stdout
 
 
-def roots_by_chapter(chapters):
-    """Map each root chunk to the chapter that defines it (from noweb markup)."""
-    roots = [line.strip()[2:-2] for line in run(['noroots'] + chapters).splitlines()
-             if line.strip()]
-    defined_in = {}
+def roots_by_chapter(stream):
+    """Map each root chunk to the chapter that defines it, from noweb's
+    markup: the chunks defined and never used (noroots' rule)."""
+    defined_in, used, quoting = {}, set(), False
     current = None
-    for line in run(['/usr/lib/noweb/markup'] + chapters).splitlines():
-        if line.startswith('@file '):
+    for line in stream.splitlines():
+        if line == '@quote':
+            quoting = True
+        elif line == '@endquote':
+            quoting = False
+        elif quoting:
+            continue
+        elif line.startswith('@file '):
             current = line[len('@file '):]
         elif line.startswith('@defn '):
             defined_in.setdefault(line[len('@defn '):], current)
-    for root in roots:
+        elif line.startswith('@use '):
+            used.add(line[len('@use '):])
+    roots = {name: chapter for name, chapter in defined_in.items() if name not in used}
+    for root, chapter in roots.items():
         if root.startswith('/') or '..' in root.split('/') or ' ' in root:
-            fail('%s: root chunk <<%s>> is not a relative file path'
-                 % (defined_in.get(root), root))
-    return {root: defined_in[root] for root in roots}
+            fail('%s: root chunk <<%s>> is not a relative file path' % (chapter, root))
+    return roots
 
 
 def header(root, chapter):
@@ -71,16 +84,19 @@ def main():
     parser.add_argument('chapters', nargs='+')
     args = parser.parse_args()
 
-    roots = roots_by_chapter(args.chapters)
+    # As notangle runs it: markup (-t keeps tabs for nt's -L), the filters, nt.
+    markup = run([os.path.join(NOWEB, 'markup')] +
+                 (['-t'] if args.line_directives else []) + args.chapters)
+    roots = roots_by_chapter(markup)
+    filtered = run(EXERCISES_FILTER, stdin=markup)
+    if not args.line_directives:
+        filtered = run(COMMENTS_FILTER, stdin=filtered)
     for root, chapter in sorted(roots.items()):
+        nt = [os.path.join(NOWEB, 'nt'), '-R' + root]
         if args.line_directives:
-            code = run(['notangle', '-L' + LINE_FORMAT] + EXERCISES_FILTER +
-                       ['-R' + root] + args.chapters)
+            code = run(nt + ['-t', '-L' + LINE_FORMAT], stdin=filtered)
         else:
-            code = header(root, chapter) + run(
-                ['notangle'] + EXERCISES_FILTER + ['-filter',
-                 'python3 ' + os.path.join(HERE, 'fragment_comments.py'),
-                 '-R' + root] + args.chapters)
+            code = header(root, chapter) + run(nt, stdin=filtered)
         if not code.endswith('\n'):
             code += '\n'
         path = os.path.join(args.out, root)

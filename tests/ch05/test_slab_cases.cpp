@@ -7,6 +7,8 @@
 
 #include "lrt/lrt.h"
 
+#include "exercise_calls.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,14 +60,14 @@ struct Result {
 Result Check(const Bounds3f &b, const Ray &r) {
     const Float unset = -12345;
     Float t0 = unset, t1 = unset;
-    bool hit = b.IntersectP(r, &t0, &t1);
-    bool hitNoOutput = b.IntersectP(r);
+    bool hit = ex::IntersectP(b, r, &t0, &t1);
+    bool hitNoOutput = ex::IntersectP(b, r);
     Float only0 = unset, only1 = unset;
-    bool hitOnly0 = b.IntersectP(r, &only0, nullptr);
-    bool hitOnly1 = b.IntersectP(r, nullptr, &only1);
+    bool hitOnly0 = ex::IntersectP(b, r, &only0, nullptr);
+    bool hitOnly1 = ex::IntersectP(b, r, nullptr, &only1);
     Vector3f invDir(1 / r.d.x, 1 / r.d.y, 1 / r.d.z);
     int dirIsNeg[3] = {invDir.x < 0, invDir.y < 0, invDir.z < 0};
-    bool fast = b.IntersectP(r, invDir, dirIsNeg);
+    bool fast = ex::IntersectP(b, r, invDir, dirIsNeg);
     std::string what = Describe(b, r);
     EXPECT_EQ(hit, fast) << "the two IntersectP forms disagree: " << what;
     EXPECT_EQ(hit, hitNoOutput) << what;
@@ -114,7 +116,7 @@ TEST(SlabTest, WideningConstantIsOnePlusSixU) {
 // lower face, inside, on the upper face and above each slab, and tMax
 // infinite, before, at, inside and after the box, and zero. Also for boxes
 // that are flat (zero extent) on one axis.
-TEST(Ex5_9_SlabTest, AxisParallelRaysExhaustive) {
+EXERCISE_TEST(Ex5_9_SlabTest, AxisParallelRaysExhaustive) {
     const Bounds3f boxes[] = {
         Bounds3f(Point3f(1, 2, -3), Point3f(2, 6, -1)),
         Bounds3f(Point3f(1, 2, -3), Point3f(1, 6, -1)),   // flat in x
@@ -188,7 +190,7 @@ TEST(Ex5_9_SlabTest, AxisParallelRaysExhaustive) {
 // from it hits, at t = 0, whatever its direction, including directions
 // parallel to the face the origin lies on (the 0 * infinity = NaN case).
 // Boundary points: the 6 face centers, 12 edge midpoints and 8 corners.
-TEST(Ex5_9_SlabTest, OriginOnTheBoundaryAlwaysHits) {
+EXERCISE_TEST(Ex5_9_SlabTest, OriginOnTheBoundaryAlwaysHits) {
     const Bounds3f boxes[] = {
         Bounds3f(Point3f(-1, 0, 2), Point3f(3, 1, 6)),
         Bounds3f(Point3f(-1, 0, 2), Point3f(3, 0, 6)),  // flat in y
@@ -228,7 +230,7 @@ TEST(Ex5_9_SlabTest, OriginOnTheBoundaryAlwaysHits) {
 
 // An origin outside the box that moves away from it, or parallel to it, in
 // every axis on which it lies outside, never reaches the box.
-TEST(Ex5_9_SlabTest, OriginOutsideMovingAwayMisses) {
+EXERCISE_TEST(Ex5_9_SlabTest, OriginOutsideMovingAwayMisses) {
     const Bounds3f b(Point3f(-1, 0, 2), Point3f(3, 1, 6));
     int cases = 0;
     for (int cx = 0; cx < 3; ++cx)
@@ -263,7 +265,7 @@ TEST(Ex5_9_SlabTest, OriginOutsideMovingAwayMisses) {
 
 // Oblique rays from outside with exactly representable crossings: tMax
 // before, at, between and after the crossings, and infinite.
-TEST(Ex5_9_SlabTest, TMaxBeforeAtAndAfterTheBox) {
+EXERCISE_TEST(Ex5_9_SlabTest, TMaxBeforeAtAndAfterTheBox) {
     // Along d = (1, 2, 4) from the origin, the ray is in the box
     // [4, 10] x [2, 40] x [8, 100] for t in [max(4, 1, 2), min(10, 20, 25)].
     const Bounds3f b(Point3f(4, 2, 8), Point3f(10, 40, 100));
@@ -304,7 +306,7 @@ TEST(Ex5_9_SlabTest, TMaxBeforeAtAndAfterTheBox) {
 // A tMax just short of the entry: rays that stop within the widening margin
 // of the box are reported as hits (conservative), rays that stop clearly
 // short are not.
-TEST(Ex5_11_SlabTest, TMaxWithinRoundingMarginOfTheEntry) {
+EXERCISE_TEST(Ex5_11_SlabTest, TMaxWithinRoundingMarginOfTheEntry) {
     const Bounds3f b(Point3f(4, 2, 8), Point3f(10, 40, 100));
     const Ray justShort(Point3f(0, 0, 0), Vector3f(1, 2, 4),
                         std::nextafter(Float(4), Float(0)));
@@ -318,7 +320,7 @@ TEST(Ex5_11_SlabTest, TMaxWithinRoundingMarginOfTheEntry) {
 // d < 0 is false while 1/d = -infinity is negative. With the signs taken
 // from the reciprocal, a ray inside the slab hits; with signs taken from
 // the direction, the near value becomes +infinity and the box is missed.
-TEST(Ex5_10_SlabTest, SignsMustComeFromTheReciprocal) {
+EXERCISE_TEST(Ex5_10_SlabTest, SignsMustComeFromTheReciprocal) {
     const Bounds3f b(Point3f(0, 0, 0), Point3f(1, 1, 1));
     const Ray r(Point3f(Float(0.5), Float(0.5), -1), Vector3f(-Float(0), 0, 1));
     Vector3f invDir(1 / r.d.x, 1 / r.d.y, 1 / r.d.z);
@@ -326,16 +328,16 @@ TEST(Ex5_10_SlabTest, SignsMustComeFromTheReciprocal) {
     int fromDirection[3] = {r.d.x < 0, r.d.y < 0, r.d.z < 0};
     EXPECT_EQ(right[0], 1);
     EXPECT_EQ(fromDirection[0], 0);
-    EXPECT_TRUE(b.IntersectP(r, invDir, right));
+    EXPECT_TRUE(ex::IntersectP(b, r, invDir, right));
     EXPECT_TRUE(Check(b, r).hit);
-    EXPECT_FALSE(b.IntersectP(r, invDir, fromDirection));
+    EXPECT_FALSE(ex::IntersectP(b, r, invDir, fromDirection));
 }
 
 // The example of the text: a ray through a box edge (and through a vertex
 // of the triangle that the box bounds) at t = 1 exactly. Without widening,
 // the computed near value 1 exceeds the computed far value 107 * (1/107),
 // which rounds to 1 - u in float and in double.
-TEST(Ex5_11_SlabTest, GrazingEdgeExampleFromTheText) {
+EXERCISE_TEST(Ex5_11_SlabTest, GrazingEdgeExampleFromTheText) {
     const Bounds3f b(Point3f(1, 106, 0), Point3f(2, 107, 1));
     const Ray r(Point3f(0, 0, 0), Vector3f(1, 107, Float(0.5)));
     // The ray's point at t = 1 is on the box's edge, exactly.
@@ -356,7 +358,7 @@ TEST(Ex5_11_SlabTest, GrazingEdgeExampleFromTheText) {
 }
 
 // Boxes far from the origin, where the spacing of Floats is large.
-TEST(Ex5_9_SlabTest, BoxesFarFromTheOrigin) {
+EXERCISE_TEST(Ex5_9_SlabTest, BoxesFarFromTheOrigin) {
     const Float c = 1e7f;
     const Bounds3f b(Point3f(c, c, c), Point3f(c + 8, c + 8, c + 8));
     // From the origin toward the center, and through an edge exactly.
@@ -390,7 +392,7 @@ TEST(Ex5_9_SlabTest, BoxesFarFromTheOrigin) {
 }
 
 // Tiny boxes, 1e-7 on a side, near and away from the origin.
-TEST(Ex5_9_SlabTest, TinyBoxes) {
+EXERCISE_TEST(Ex5_9_SlabTest, TinyBoxes) {
     const Float s = 1e-7f;
     const Bounds3f b(Point3f(s, s, s), Point3f(2 * s, 2 * s, 2 * s));
     // From the origin toward the center: in the box for t in [2/3, 4/3].
@@ -426,7 +428,7 @@ TEST(Ex5_9_SlabTest, TinyBoxes) {
 
 // The empty box of the default constructor is never hit by a ray that is
 // not NaN on all three axes.
-TEST(Ex5_9_SlabTest, EmptyBoxIsNeverHit) {
+EXERCISE_TEST(Ex5_9_SlabTest, EmptyBoxIsNeverHit) {
     const Bounds3f empty;
     const Float coords[] = {0,    1,     -1,    -Float(0), 1e30f,
                             -1e30f, kMax, -kMax, kInf,      -kInf};
@@ -457,7 +459,7 @@ TEST(Ex5_9_SlabTest, EmptyBoxIsNeverHit) {
 // The direction is the zero vector: the "ray" is its origin, and it hits
 // the box exactly when the origin lies in the closed box, even for an
 // infinite tMax (a box reached only at t = infinity is not hit).
-TEST(Ex5_9_SlabTest, ZeroDirectionHitsOnlyWhenTheOriginIsInside) {
+EXERCISE_TEST(Ex5_9_SlabTest, ZeroDirectionHitsOnlyWhenTheOriginIsInside) {
     const Bounds3f b(Point3f(0, 0, 0), Point3f(1, 2, 3));
     const Float zeros[2] = {Float(0), -Float(0)};
     const Float xs[] = {-1, 0, Float(0.5), 1, 2};
@@ -479,7 +481,7 @@ TEST(Ex5_9_SlabTest, ZeroDirectionHitsOnlyWhenTheOriginIsInside) {
 }
 
 // Boxes with infinite extent contain every finite point.
-TEST(Ex5_9_SlabTest, InfiniteBoxes) {
+EXERCISE_TEST(Ex5_9_SlabTest, InfiniteBoxes) {
     const Bounds3f all(Point3f(-kInf, -kInf, -kInf),
                        Point3f(kInf, kInf, kInf));
     const Bounds3f halfSpace(Point3f(0, -kInf, -kInf),
@@ -502,7 +504,7 @@ TEST(Ex5_9_SlabTest, InfiniteBoxes) {
 // the origin or the direction removes that slab from the test, a ray that is
 // NaN on all three axes hits every box with the interval [0, tMax], and a
 // NaN tMax hits every box that is not reached only at infinite t.
-TEST(Ex5_9_SlabTest, NaNInputsHaveTheDefinedResult) {
+EXERCISE_TEST(Ex5_9_SlabTest, NaNInputsHaveTheDefinedResult) {
     const Bounds3f b(Point3f(0, 0, 0), Point3f(1, 1, 1));
     // NaN origin y: the y slab drops out; x and z decide.
     Result a = Check(b, Ray(Point3f(-5, kNaN, Float(0.5)), Vector3f(1, 0, 0)));

@@ -1,0 +1,596 @@
+// The judge: one chapter's exercise tests, compiled with LRT_JUDGE and linked
+// with the book's code, whose exercise calls (calls.h) are answered by a
+// worker process that runs the student's code in a sandbox. The grader
+// (tools/grade.py) starts it as
+//
+//   judge --lrt-worker=FILE --lrt-secret=N --lrt-results=FILE
+//         [--lrt-call-timeout=S] [--lrt-worker-log=FILE] --gtest_filter=...
+//
+// The worker's FILE lists its command line, one argument a line (the sandbox,
+// its limits and the worker binary); the results FILE gets a line of JSON per
+// test as it ends. The judge never runs the student's code: it
+// decides every verdict from the worker's answers, and the worker never learns
+// which test asked.
+//
+// Rounds. A test's body is written as straight-line code that calls
+// lrt::ex::Name(...) and checks each result. Sending every call to the worker
+// on its own would cost a round trip per call, which on a loaded two-core
+// machine is tens of microseconds (some tests make a million calls). So the
+// body runs in rounds: a call whose worker reply is not known yet gets a
+// speculative reply from the book's code, so the body can go on, and is sent
+// with the others in one batch at the end of the round. The next round runs
+// the body again with the worker's replies; where the calls the body makes
+// differ from the last round's (a wrong answer changed its path), the rest
+// is asked again. The round in which every reply came from the worker decides
+// the test; the failures of the earlier rounds are thrown away (they are
+// intercepted, not reported). The book's code only ever steers a body that is
+// run again; it never answers for the student.
+
+#include "calls/calls.h"
+
+#include <gtest/gtest-spi.h>
+
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <random>
+
+namespace lrt {
+namespace calls {
+
+namespace {
+
+// Aborts the body of a test after a worker failure (recorded as a failure
+// first); not a std::exception, so that the body's own catch clauses for
+// standard exceptions do not swallow it.
+struct Abort {};
+
+const uint32_t kMaxFrame = 256u << 20;   // bytes of one reply
+const int kMaxStarts = 40;               // worker processes per judge run
+
+struct Config {
+    std::vector<std::string> workerArgv;
+    std::string workerLog = "/dev/null";
+    double callTimeout = 10;
+    uint64_t secret = 0;
+} config;
+
+double Now() {
+    timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+std::string StatusReply(Status s, const std::string &what) {
+    Writer w;
+    Put(w, uint8_t(s));
+    Put(w, what);
+    return w.bytes;
+}
+
+std::string SignalName(int sig) {
+    switch (sig) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGABRT: return "SIGABRT";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGBUS: return "SIGBUS";
+    case SIGKILL: return "SIGKILL";
+    case SIGXCPU: return "SIGXCPU";
+    case SIGXFSZ: return "SIGXFSZ";
+    case SIGTERM: return "SIGTERM";
+    case SIGPIPE: return "SIGPIPE";
+    case SIGSYS: return "SIGSYS";
+    default: return "signal " + std::to_string(sig);
+    }
+}
+
+// The worker process: the sandbox with the student's code, spoken to through
+// two pipes that the worker sees as file descriptors 3 (requests) and 4
+// (replies); its standard output and error go to the worker log.
+class Worker {
+  public:
+    ~Worker() { Stop(); }
+
+    bool Running() const { return pid > 0; }
+
+    // Starts a worker; false (with the reason) if none can be started.
+    bool Start(std::string *why) {
+        if (starts >= kMaxStarts) {
+            *why = "the code crashed or hung too often (" +
+                   std::to_string(kMaxStarts) + " worker processes)";
+            return false;
+        }
+        if (config.workerArgv.empty()) {
+            *why = "no worker command (--lrt-worker)";
+            return false;
+        }
+        ++starts;
+        int toWorker[2], fromWorker[2];
+        if (pipe2(toWorker, O_CLOEXEC) != 0 || pipe2(fromWorker, O_CLOEXEC) != 0) {
+            *why = "pipe() failed";
+            return false;
+        }
+        std::vector<char *> argv;
+        for (const std::string &a : config.workerArgv)
+            argv.push_back(const_cast<char *>(a.c_str()));
+        argv.push_back(nullptr);
+        int log = open(config.workerLog.c_str(),
+                       O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
+        pid_t child = fork();
+        if (child == 0) {
+            // Only async-signal-safe calls between fork and exec.
+            int null = open("/dev/null", O_RDONLY);
+            if (null < 0 || dup2(null, 0) < 0) _exit(126);
+            int out = log >= 0 ? log : null;
+            if (dup2(out, 1) < 0 || dup2(out, 2) < 0) _exit(126);
+            // Out of the way first, so that neither lands on the other's
+            // number; dup2 clears close-on-exec on 3 and 4.
+            int in = fcntl(toWorker[0], F_DUPFD_CLOEXEC, 10);
+            int back = fcntl(fromWorker[1], F_DUPFD_CLOEXEC, 10);
+            if (in < 0 || back < 0 || dup2(in, 3) < 0 || dup2(back, 4) < 0)
+                _exit(126);
+            for (int fd = 5; fd < 1024; ++fd) close(fd);
+            execvp(argv[0], argv.data());
+            _exit(127);
+        }
+        if (log >= 0) close(log);
+        close(toWorker[0]);
+        close(fromWorker[1]);
+        if (child < 0) {
+            close(toWorker[1]);
+            close(fromWorker[0]);
+            *why = "fork() failed";
+            return false;
+        }
+        pid = child;
+        to = toWorker[1];
+        from = fromWorker[0];
+        fcntl(to, F_SETFL, O_NONBLOCK);
+        fcntl(from, F_SETFL, O_NONBLOCK);
+        inbox.clear();
+        taken = 0;
+        return true;
+    }
+
+    // Kills the worker (the sandbox ends with it) and says how it ended.
+    std::string Stop(bool kill = true) {
+        if (pid <= 0) return "";
+        if (kill) ::kill(pid, SIGKILL);
+        close(to);
+        close(from);
+        int status = 0;
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        pid = -1;
+        if (WIFSIGNALED(status)) return "killed by " + SignalName(WTERMSIG(status));
+        if (WIFEXITED(status)) {
+            int code = WEXITSTATUS(status);
+            // The sandbox reports a signal that ended the program as 128 + n.
+            if (code > 128 && code < 128 + 65)
+                return "killed by " + SignalName(code - 128);
+            return "exited with status " + std::to_string(code);
+        }
+        return "ended";
+    }
+
+    // Sends the requests (id, bytes) and collects one reply per request, in
+    // order. A worker that crashes, hangs or answers out of turn gets a
+    // failure reply for the request it was on, and a new worker takes the
+    // requests after it; objects kept by the old one are gone.
+    std::vector<std::string> Exchange(
+        const std::vector<std::pair<uint64_t, std::string>> &requests) {
+        std::vector<std::string> replies;
+        while (replies.size() < requests.size()) {
+            size_t first = replies.size();
+            std::string why;
+            if (!Running() && !Start(&why)) {
+                while (replies.size() < requests.size())
+                    replies.push_back(StatusReply(Status::Crashed, why));
+                break;
+            }
+            std::string out;
+            for (size_t i = first; i < requests.size(); ++i) {
+                uint32_t n = uint32_t(requests[i].second.size() + 8);
+                out.append(reinterpret_cast<const char *>(&n), 4);
+                out.append(reinterpret_cast<const char *>(&requests[i].first), 8);
+                out += requests[i].second;
+            }
+            Pump(out, requests, &replies);
+        }
+        return replies;
+    }
+
+    // Ends the test: the worker drops the objects it kept.
+    void Reset() {
+        if (!Running()) return;
+        std::vector<std::pair<uint64_t, std::string>> reset{{0, ""}};
+        Exchange(reset);
+    }
+
+  private:
+    // Writes `out` and reads replies until every request has one or the
+    // worker fails (then it is stopped and the failure is the reply of the
+    // request it was on).
+    void Pump(const std::string &out,
+              const std::vector<std::pair<uint64_t, std::string>> &requests,
+              std::vector<std::string> *replies) {
+        size_t written = 0;
+        double last = Now();
+        while (replies->size() < requests.size()) {
+            pollfd fds[2] = {{from, POLLIN, 0}, {to, POLLOUT, 0}};
+            int nfds = written < out.size() ? 2 : 1;
+            double left = config.callTimeout - (Now() - last);
+            int r = left > 0 ? poll(fds, nfds, int(left * 1000) + 1) : 0;
+            if (r < 0 && errno == EINTR) continue;
+            if (r <= 0 && Now() - last >= config.callTimeout) {
+                Stop();
+                replies->push_back(StatusReply(
+                    Status::TimedOut, "no answer within the time limit of " +
+                                          Seconds(config.callTimeout)));
+                return;
+            }
+            if (nfds == 2 && (fds[1].revents & (POLLOUT | POLLERR | POLLHUP))) {
+                ssize_t n = write(to, out.data() + written, out.size() - written);
+                if (n > 0) written += size_t(n);
+                if (n < 0 && errno != EAGAIN && errno != EINTR)
+                    written = out.size();   // the worker is gone; read why
+            }
+            if (fds[0].revents & (POLLIN | POLLERR | POLLHUP)) {
+                char buf[1 << 16];
+                ssize_t n = read(from, buf, sizeof(buf));
+                if (n > 0) {
+                    inbox.append(buf, size_t(n));
+                    while (TakeReply(requests, replies, &last)) {
+                    }
+                    inbox.erase(0, taken);
+                    taken = 0;
+                    if (failed) {
+                        failed = false;
+                        Stop();
+                        replies->push_back(StatusReply(
+                            Status::BadReply, "the answer was not in the "
+                                              "format of the exercise calls"));
+                        return;
+                    }
+                } else if (n == 0 || (errno != EAGAIN && errno != EINTR)) {
+                    std::string how = Stop(false);
+                    Status s = how.find("SIGXCPU") != std::string::npos
+                                   ? Status::TimedOut
+                                   : Status::Crashed;
+                    replies->push_back(StatusReply(s, "the code " + how));
+                    return;
+                }
+            }
+        }
+    }
+
+    // Moves one complete reply from the inbox to the replies.
+    bool TakeReply(const std::vector<std::pair<uint64_t, std::string>> &requests,
+                   std::vector<std::string> *replies, double *last) {
+        size_t have = inbox.size() - taken;
+        if (replies->size() >= requests.size() || have < 4) return false;
+        uint32_t n;
+        std::memcpy(&n, inbox.data() + taken, 4);
+        if (n < 8 || n > kMaxFrame) {
+            failed = true;
+            return false;
+        }
+        if (have < 4 + size_t(n)) return false;
+        uint64_t id;
+        std::memcpy(&id, inbox.data() + taken + 4, 8);
+        if (id != requests[replies->size()].first) {
+            failed = true;
+            return false;
+        }
+        replies->push_back(inbox.substr(taken + 12, n - 8));
+        taken += 4 + size_t(n);
+        *last = Now();
+        return true;
+    }
+
+    static std::string Seconds(double s) {
+        char buf[32];
+        std::snprintf(buf, sizeof(buf), "%g s", s);
+        return buf;
+    }
+
+    pid_t pid = -1;
+    int to = -1, from = -1;
+    int starts = 0;
+    bool failed = false;
+    std::string inbox;    // bytes read from the worker
+    size_t taken = 0;     // of which replies already taken
+};
+
+Worker *worker = nullptr;
+
+// One test's calls, across its rounds.
+struct Slot {
+    uint64_t id;
+    std::string request;
+    std::string reply;
+};
+struct Session {
+    std::vector<Slot> slots;      // every call the body made, in order
+    size_t next = 0;              // the call the body makes next
+    std::vector<size_t> pending;  // slots answered speculatively this round
+    bool verdict = false;         // the run whose failures count
+    std::string worst;            // its gravest worker failure: CRASH, ...
+};
+Session *session = nullptr;
+uint64_t lastId = 0;
+
+// Standard output goes nowhere while it lives: what a body prints in its
+// speculative rounds would otherwise appear once per round.
+class Quiet {
+  public:
+    Quiet() {
+        std::cout.flush();
+        std::fflush(stdout);
+        saved = dup(1);
+        int null = open("/dev/null", O_WRONLY);
+        if (saved >= 0 && null >= 0) dup2(null, 1);
+        if (null >= 0) close(null);
+    }
+    ~Quiet() {
+        std::cout.flush();
+        std::fflush(stdout);
+        if (saved >= 0) {
+            dup2(saved, 1);
+            close(saved);
+        }
+    }
+
+  private:
+    int saved;
+};
+
+const char *StatusWord(Status s) {
+    switch (s) {
+    case Status::Crashed: return "CRASH";
+    case Status::TimedOut: return "TIMEOUT";
+    case Status::OutOfMemory: return "OOM";
+    default: return "FAIL";
+    }
+}
+
+}  // namespace
+
+uint64_t Seed(uint64_t seed) {
+    // splitmix64 of the two: a different, unpredictable stream per grading.
+    uint64_t z = seed + config.secret * 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+std::string Answer(const std::string &request,
+                   const std::function<std::string()> &speculate) {
+    if (!session) {
+        ADD_FAILURE() << "an exercise call outside an EXERCISE_TEST";
+        throw Abort();
+    }
+    Session &s = *session;
+    size_t i = s.next++;
+    if (i < s.slots.size()) {
+        if (s.slots[i].request == request) return s.slots[i].reply;
+        s.slots.resize(i);   // the body took another path: ask again from here
+    }
+    Slot slot{++lastId, request, ""};
+    if (s.verdict) {
+        // A call the speculative rounds did not foresee: ask the worker now.
+        slot.reply = worker->Exchange({{slot.id, request}})[0];
+    } else {
+        TheStore().currentCall = slot.id;
+        slot.reply = speculate();
+        s.pending.push_back(i);
+    }
+    s.slots.push_back(slot);
+    return s.slots.back().reply;
+}
+
+void Unpack(const std::string &reply, const char *name, Reader *r) {
+    uint8_t status;
+    Get(*r, status);
+    if (Status(status) == Status::Ok) return;
+    if (Status(status) == Status::Threw) {
+        uint8_t kind;
+        std::string what;
+        Get(*r, kind);
+        Get(*r, what);
+        switch (Thrown(kind)) {
+        case Thrown::InvalidArgument: throw std::invalid_argument(what);
+        case Thrown::OutOfRange: throw std::out_of_range(what);
+        case Thrown::LogicError: throw std::logic_error(what);
+        case Thrown::RuntimeError: throw std::runtime_error(what);
+        case Thrown::BadAlloc:
+            if (session && session->verdict && session->worst.empty())
+                session->worst = "OOM";
+            ADD_FAILURE() << "out of memory in " << name << " (std::bad_alloc)";
+            throw Abort();
+        default: throw std::runtime_error(what);
+        }
+    }
+    std::string what;
+    try {
+        Get(*r, what);
+    } catch (const Malformed &) {
+        what = "no reply";
+    }
+    Status s = Status(status);
+    if (s != Status::Crashed && s != Status::TimedOut && s != Status::BadReply &&
+        s != Status::OutOfMemory)
+        what = "an unknown reply";
+    if (session && session->verdict && session->worst.empty())
+        session->worst = StatusWord(s);
+    ADD_FAILURE() << "during " << name << ": " << what;
+    (void)reply;
+    throw Abort();
+}
+
+void RunRounds(void (*body)()) {
+    Session s;
+    session = &s;
+    struct Cleanup {
+        ~Cleanup() {
+            session = nullptr;
+            TheStore().objects.clear();
+            worker->Reset();
+        }
+    } cleanup;
+    // Speculative rounds: failures intercepted, calls collected and sent.
+    const int kMaxRounds = 16;
+    for (int round = 0; round < kMaxRounds; ++round) {
+        s.next = 0;
+        s.pending.clear();
+        ::testing::TestPartResultArray ignored;
+        Quiet quiet;
+        {
+            ::testing::ScopedFakeTestPartResultReporter intercept(
+                ::testing::ScopedFakeTestPartResultReporter::
+                    INTERCEPT_ONLY_CURRENT_THREAD,
+                &ignored);
+            try {
+                body();
+            } catch (...) {
+            }
+        }
+        if (s.pending.empty()) break;
+        std::vector<std::pair<uint64_t, std::string>> requests;
+        for (size_t i : s.pending)
+            requests.emplace_back(s.slots[i].id, s.slots[i].request);
+        std::vector<std::string> replies = worker->Exchange(requests);
+        for (size_t k = 0; k < s.pending.size(); ++k)
+            s.slots[s.pending[k]].reply = replies[k];
+    }
+    // The verdict: the body once more, as a plain GoogleTest body, every
+    // reply the worker's (a call not seen before is asked for on the spot).
+    s.next = 0;
+    s.verdict = true;
+    try {
+        body();
+    } catch (const Abort &) {
+    }
+    if (!s.worst.empty())
+        ::testing::Test::RecordProperty("lrt_status", s.worst);
+}
+
+}  // namespace calls
+}  // namespace lrt
+
+namespace {
+
+bool StartsWith(const std::string &s, const std::string &prefix) {
+    return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+std::string JsonString(const std::string &s) {
+    std::string out = "\"";
+    for (unsigned char c : s) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += char(c);
+        } else if (c < 0x20 || c == 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof(buf), "\\u%04x", c);
+            out += buf;
+        } else {
+            out += char(c);
+        }
+    }
+    return out + "\"";
+}
+
+// Writes a line of JSON per finished test to a file, at once, so that what
+// finished is known even if the judge is stopped later:
+//   {"test": "Suite.Name", "passed": true, "status": "", "failures": [...]}
+class ResultLines : public ::testing::EmptyTestEventListener {
+  public:
+    explicit ResultLines(const std::string &path) : out(path, std::ios::app) {}
+    bool ok() const { return bool(out); }
+    void OnTestEnd(const ::testing::TestInfo &info) override {
+        const ::testing::TestResult *r = info.result();
+        std::string status;
+        for (int i = 0; i < r->test_property_count(); ++i)
+            if (std::string(r->GetTestProperty(i).key()) == "lrt_status")
+                status = r->GetTestProperty(i).value();
+        out << "{\"test\": "
+            << JsonString(std::string(info.test_suite_name()) + "." + info.name())
+            << ", \"passed\": " << (r->Passed() ? "true" : "false")
+            << ", \"status\": " << JsonString(status) << ", \"failures\": [";
+        bool first = true;
+        for (int i = 0; i < r->total_part_count(); ++i) {
+            const ::testing::TestPartResult &part = r->GetTestPartResult(i);
+            if (!part.failed()) continue;
+            std::string where = part.file_name() ? part.file_name() : "";
+            if (!where.empty() && part.line_number() >= 0)
+                where += ":" + std::to_string(part.line_number());
+            out << (first ? "" : ", ")
+                << JsonString((where.empty() ? "" : where + "\n") + part.message());
+            first = false;
+        }
+        out << "]}\n";
+        out.flush();
+    }
+
+  private:
+    std::ofstream out;
+};
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    using lrt::calls::config;
+    // The judge writes to pipes of workers that may have died.
+    signal(SIGPIPE, SIG_IGN);
+    std::vector<char *> rest{argv[0]};
+    std::string results;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        if (StartsWith(a, "--lrt-worker=")) {
+            std::ifstream in(a.substr(13));
+            if (!in) {
+                std::cerr << "judge: cannot read " << a.substr(13) << "\n";
+                return 2;
+            }
+            for (std::string line; std::getline(in, line);)
+                config.workerArgv.push_back(line);
+        } else if (StartsWith(a, "--lrt-secret=")) {
+            config.secret = std::strtoull(a.c_str() + 13, nullptr, 10);
+        } else if (StartsWith(a, "--lrt-call-timeout=")) {
+            config.callTimeout = std::atof(a.c_str() + 19);
+        } else if (StartsWith(a, "--lrt-worker-log=")) {
+            config.workerLog = a.substr(17);
+        } else if (StartsWith(a, "--lrt-results=")) {
+            results = a.substr(14);
+        } else {
+            rest.push_back(argv[i]);
+        }
+    }
+    int n = int(rest.size());
+    ::testing::InitGoogleTest(&n, rest.data());
+    if (!results.empty()) {
+        auto *lines = new ResultLines(results);
+        if (!lines->ok()) {
+            std::cerr << "judge: cannot write " << results << "\n";
+            return 2;
+        }
+        ::testing::UnitTest::GetInstance()->listeners().Append(lines);
+    }
+    lrt::calls::Worker w;
+    lrt::calls::worker = &w;
+    int status = RUN_ALL_TESTS();
+    w.Stop();
+    return status;
+}

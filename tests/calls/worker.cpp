@@ -1,0 +1,117 @@
+// The worker: the student's code behind one chapter's exercise calls. The
+// grader builds it with LRT_WORKER and LRT_CALLS_HEADER naming the chapter's
+// tests/chNN/exercise_calls.h, links it with the student's code, and runs it
+// in a sandbox; the judge (judge.cpp) sends it requests on file descriptor 3
+// and reads the replies on 4. Each request is a call (a name and arguments);
+// the worker answers it with what the code returns or throws, and knows
+// nothing of the test that asked. A request with id 0 ends a test: the
+// objects that calls kept are dropped.
+//
+// Frames, both ways: a 4-byte length n, then n bytes: an 8-byte id and the
+// message (calls.h encodes both). What the student's code prints goes to the
+// worker's standard output and error, which the judge sends to a log.
+
+#include "calls/calls.h"
+
+#include LRT_CALLS_HEADER
+
+#include <unistd.h>
+
+#include <cstring>
+#include <string>
+
+namespace {
+
+// Requests are read in large blocks, and the replies to all the requests of
+// a block are written together, before the worker waits for more: one pair
+// of system calls per block instead of per call.
+class Channel {
+  public:
+    // The next request, or false at the end of the input.
+    bool Next(uint64_t *id, std::string *message) {
+        for (;;) {
+            size_t have = in.size() - at;
+            if (have >= 12) {
+                uint32_t n;
+                std::memcpy(&n, in.data() + at, 4);
+                if (n < 8) return false;
+                if (have >= 4 + size_t(n)) {
+                    std::memcpy(id, in.data() + at + 4, 8);
+                    message->assign(in, at + 12, n - 8);
+                    at += 4 + size_t(n);
+                    return true;
+                }
+            }
+            if (!Flush()) return false;
+            in.erase(0, at);
+            at = 0;
+            char buf[1 << 16];
+            ssize_t r = read(3, buf, sizeof(buf));
+            if (r <= 0) return false;
+            in.append(buf, size_t(r));
+        }
+    }
+    void Send(uint64_t id, const std::string &reply) {
+        uint32_t length = uint32_t(reply.size() + 8);
+        out.append(reinterpret_cast<const char *>(&length), 4);
+        out.append(reinterpret_cast<const char *>(&id), 8);
+        out += reply;
+    }
+    bool Flush() {
+        const char *p = out.data();
+        size_t n = out.size();
+        while (n > 0) {
+            ssize_t r = write(4, p, n);
+            if (r <= 0) return false;
+            p += r;
+            n -= size_t(r);
+        }
+        out.clear();
+        return true;
+    }
+
+  private:
+    std::string in, out;
+    size_t at = 0;
+};
+
+std::string Serve(const std::string &message) {
+    using namespace lrt::calls;
+    Reader r(message);
+    std::string name;
+    try {
+        Get(r, name);
+    } catch (const Malformed &) {
+        return Reply([](Writer &) { throw Malformed("a request without a name"); });
+    }
+    for (const Operation &op : Operations())
+        if (name == op.name) {
+            try {
+                return op.serve(r);
+            } catch (const Malformed &e) {
+                return Reply([&](Writer &) { throw e; });
+            }
+        }
+    return Reply([&](Writer &) {
+        throw std::invalid_argument("the worker has no call named " + name);
+    });
+}
+
+}  // namespace
+
+int main() {
+    Channel channel;
+    uint64_t id;
+    std::string message;
+    while (channel.Next(&id, &message)) {
+        if (id == 0) {
+            lrt::calls::TheStore().objects.clear();
+            channel.Send(0, "");
+        } else {
+            lrt::calls::TheStore().currentCall = id;
+            channel.Send(id, Serve(message));
+        }
+    }
+    channel.Flush();
+    return 0;
+}

@@ -1,0 +1,148 @@
+"""Command lines that run a student's code, or compile it, in isolation.
+
+The grader (tools/grade.py, docs/grading.md) never runs a student's code
+itself. What runs the code, the worker, is started through the command line
+that worker_command() builds; what compiles it, through compile_command().
+
+Isolation, the best this machine allows (isolation() says which):
+
+- "bubblewrap": the program runs in bwrap with new user, PID, network, IPC,
+  UTS and cgroup namespaces, in its own session, killed with its parent, on an
+  empty root that holds only what it needs (the worker: its static binary; the
+  compiler: /usr and the build directory), a private /tmp, no environment
+  but PATH and HOME, no capabilities and no way to make more user namespaces.
+  If the grader is root, the sandbox also runs as an unprivileged user of its
+  own, so that the process limit counts only its processes.
+- "unprivileged user": root without a working bwrap (some containers forbid
+  namespaces): the worker runs as that unprivileged user with the same
+  limits; it can read what the world can read, so the grader makes its own
+  files unreadable to others (protect()).
+- "none": neither: only the limits. The grader refuses this unless told
+  otherwise (--allow-no-sandbox), since the code then runs as the grader.
+
+Limits (prlimit): address space, CPU seconds, file size, processes, open
+files, no core dumps.
+"""
+import functools
+import os
+import shutil
+import subprocess
+
+# The unprivileged user the sandbox runs as when the grader is root: a uid
+# that no account uses, so that RLIMIT_NPROC counts the sandbox alone.
+SANDBOX_UID = 64123
+
+BWRAP_COMMON = ['--unshare-all', '--unshare-user', '--die-with-parent', '--new-session',
+                '--disable-userns', '--cap-drop', 'ALL', '--hostname', 'sandbox',
+                '--proc', '/proc', '--dev-bind', '/dev/null', '/dev/null',
+                '--clearenv', '--setenv', 'PATH', '/usr/bin:/bin',
+                '--setenv', 'HOME', '/tmp']
+
+
+def _is_root():
+    return os.geteuid() == 0
+
+
+def _drop_privileges():
+    """setpriv's arguments that make a root grader's sandbox unprivileged."""
+    if not _is_root():
+        return []
+    return ['setpriv', '--reuid=%d' % SANDBOX_UID, '--regid=%d' % SANDBOX_UID,
+            '--clear-groups', '--no-new-privs', '--']
+
+
+def _limits(memory_mb, cpu_seconds, processes, file_mb):
+    args = ['prlimit', '--core=0', '--nofile=64', '--nproc=%d' % processes,
+            '--fsize=%d' % (file_mb << 20), '--cpu=%d:%d' % (cpu_seconds, cpu_seconds + 1)]
+    if memory_mb:
+        args.append('--as=%d' % (memory_mb << 20))
+    return args + ['--']
+
+
+@functools.lru_cache(maxsize=None)
+def isolation():
+    """The isolation this machine gives: "bubblewrap", "unprivileged user" or
+    "none". bwrap is tried for real, with the options the worker uses."""
+    if shutil.which('bwrap'):
+        probe = _drop_privileges() + ['bwrap'] + BWRAP_COMMON + [
+            '--tmpfs', '/tmp', '--ro-bind', '/usr', '/usr',
+            '--symlink', 'usr/bin', '/bin', '--symlink', 'usr/lib', '/lib',
+            '--symlink', 'usr/lib64', '/lib64', 'true']
+        try:
+            ok = subprocess.run(probe, stdin=subprocess.DEVNULL,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                timeout=30).returncode == 0
+        except (OSError, subprocess.TimeoutExpired):
+            ok = False
+        if ok:
+            return 'bubblewrap'
+    if _is_root() and shutil.which('setpriv'):
+        return 'unprivileged user'
+    return 'none'
+
+
+def describe():
+    """One sentence for the feedback: how the student's code was isolated."""
+    return {
+        'bubblewrap': 'in a bubblewrap sandbox (no network, no view of the grader or '
+                      'of other files, its own processes only)',
+        'unprivileged user': 'as an unprivileged user, without namespaces (bubblewrap '
+                             'cannot run here), with limits on memory, time and '
+                             'processes',
+        'none': 'WITHOUT ISOLATION (no bubblewrap and not root): only limits on memory, '
+                'time and processes',
+    }[isolation()]
+
+
+def worker_command(binary, memory_mb=1024, cpu_seconds=120, processes=16, file_mb=16):
+    """The command line of a worker: the static binary `binary` (in a directory
+    of its own that others may read), alone in the sandbox."""
+    limits = _limits(memory_mb, cpu_seconds, processes, file_mb)
+    kind = isolation()
+    if kind == 'bubblewrap':
+        return limits + _drop_privileges() + ['bwrap'] + BWRAP_COMMON + [
+            '--size', str(64 << 20), '--tmpfs', '/tmp', '--chdir', '/tmp',
+            '--ro-bind', binary, '/worker', '/worker']
+    if kind == 'unprivileged user':
+        return limits + _drop_privileges() + [binary]
+    return limits + [binary]
+
+
+def compile_command(argv, build_dir, cache_dir=None):
+    """The command line that runs the compiler `argv` on the files of
+    `build_dir`, which it sees (read-write) as /build, its working directory.
+    The compiler reads nothing else but the system's headers and libraries:
+    a student's #include of a grader's file finds nothing."""
+    if isolation() != 'bubblewrap':
+        return None     # the caller compiles in build_dir without a sandbox
+    args = ['bwrap'] + BWRAP_COMMON + [
+        '--ro-bind', '/usr', '/usr', '--symlink', 'usr/bin', '/bin',
+        '--symlink', 'usr/lib', '/lib', '--symlink', 'usr/lib64', '/lib64',
+        '--tmpfs', '/tmp', '--bind', build_dir, '/build', '--chdir', '/build']
+    if cache_dir:
+        args += ['--bind', cache_dir, '/ccache', '--setenv', 'CCACHE_DIR', '/ccache',
+                 '--setenv', 'CCACHE_NOHASHDIR', '1']
+    return args + argv
+
+
+def shareable_dir(parent, name):
+    """A directory under `parent` that the sandbox's user may read (for the
+    worker's binary), with every directory above it traversable."""
+    path = os.path.join(parent, name)
+    os.makedirs(path, exist_ok=True)
+    os.chmod(path, 0o755)
+    return path
+
+
+def protect(paths):
+    """Without namespaces the worker sees the file system as its user does:
+    make the grader's files unreadable to others."""
+    for path in paths:
+        if not os.path.exists(path):
+            continue
+        for top, dirs, files in os.walk(path):
+            for name in dirs + files:
+                full = os.path.join(top, name)
+                if not os.path.islink(full):
+                    os.chmod(full, os.stat(full).st_mode & ~0o007)
+        os.chmod(path, os.stat(path).st_mode & ~0o007)

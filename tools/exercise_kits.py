@@ -17,15 +17,18 @@ the leak check, which `build` runs last.
 
 leaks: searches the student kit (every file, the PDF's text, the tarball) for
 any line of a chosen exercise's solution that appears nowhere else in the
-source, and for the name of any hidden test.
+source, any two consecutive lines of a solution, and the name of any hidden
+test.
 
 validate: the solution kit, built as of every chapter with that chapter's public
 and hidden tests and as of the last chapter with all of them, must pass every
-test. The student kit must compile as of every chapter; and for each chosen
-chapter N, the code as of N built as grading builds it (the student's chapter
-N, the reference text of the chapters before it) must fail every test of
-chapter N's exercises, with at least one failure naming the exercise (as the
-stubs do), and pass chapter N's other tests.
+test. Graded by tools/grade.py in the solution kit, each chosen chapter must
+score every point, and lose exactly one exercise's points with that exercise
+alone stubbed. The student kit must compile as of every chapter; and for each
+chosen chapter N, the code as of N built as grading builds it (the student's
+chapter N, the reference text of the chapters before it) must fail every test
+of chapter N's exercises, with at least one failure naming the exercise (as
+the stubs do), and pass chapter N's other tests.
 
 --src is where chapters/, tests/, book.md, figures/ and data/ come from (the
 repository by default); the Makefile, tools/ and tests/tools/ always come from
@@ -49,11 +52,13 @@ sys.path.insert(0, HERE)
 import exercises  # noqa: E402
 
 EDITIONS = ('solution', 'student')
+# What `validate` checks: each edition's tests, then grading in the solution kit.
+VALIDATIONS = EDITIONS + ('grading',)
 # The toolchain's own tests go into every kit (the kit's `make test` runs
 # them) except the exercise machinery's, whose fixtures hold solutions, and
 # the grader's, which grade the repository's own solutions with its hidden
 # tests: in a student kit, whose chapters hold stubs, they could only fail.
-TOOL_TESTS_LEFT_OUT = ('exercises', 'test_exercises.py', 'test_grade.py',
+TOOL_TESTS_LEFT_OUT = ('exercises', 'test_exercises.py', 'test_grade.py', 'attacks.py',
                        '__pycache__')
 # Make variables of the calling make that must not leak into a kit's make.
 MAKE_ENV_DROP = ('CHAPTERS', 'BUILD', 'MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'MAKEOVERRIDES',
@@ -185,7 +190,7 @@ def write_kit(edition, src, out, book, chosen_numbers, build_book):
               TOOL_TESTS_LEFT_OUT)
     for name in ('book.md', 'LICENSE', '.gitignore'):
         copy_file(os.path.join(src, name), os.path.join(kit, name))
-    for name in ('figures', 'data'):
+    for name in ('figures', 'data', os.path.join('tests', 'calls')):
         copy_tree(os.path.join(src, name), os.path.join(kit, name))
     for chapter in kit_chapters:
         target = os.path.join(kit, chapter.path)
@@ -319,23 +324,39 @@ def decoded(name, data):
     return data.decode('utf-8', errors='replace')
 
 
+# Two consecutive solution lines found together elsewhere are a leak even if
+# each line alone is common: a later chapter that repeats the code, a test
+# whose oracle is the solution, a sibling function written the same way.
+MIN_PAIR_CHARS = 32
+
+
 def leak_targets(src, manifest):
-    """The solution lines and hidden test names that must not be in the kit."""
+    """What must not be in the student kit: {compact text: (exercise,
+    chapter path, line, text)} for the solution lines of the chosen exercises
+    that appear nowhere else in the source, and for every pair of consecutive
+    solution lines; and the hidden test names."""
     book = source_book(src)
     chosen = {e['id'] for e in manifest['exercises']}
     kit_paths = set(manifest['chapters'])
     allowed = []
     solution = []    # (compact text, exercise, chapter path, line, text)
+    pairs = []       # the same, for two consecutive lines
     for chapter in book.chapters:
         if chapter.path not in kit_paths:
             continue
         hidden_lines = set()
         for region in chapter.regions:
-            if region.exercise and region.exercise.id in chosen:
-                for line, text in region.solution:
-                    hidden_lines.add(line)
-                    solution.append((compact(text), region.exercise.id, chapter.path,
-                                     line, text.strip()))
+            if not (region.exercise and region.exercise.id in chosen):
+                continue
+            code = [(line, text) for line, text in region.solution
+                    if compact(text) and not compact(text).startswith('//')]
+            for line, text in region.solution:
+                hidden_lines.add(line)
+                solution.append((compact(text), region.exercise.id, chapter.path,
+                                 line, text.strip()))
+            for (line, a), (_, b) in zip(code, code[1:]):
+                pairs.append((compact(a) + compact(b), region.exercise.id, chapter.path,
+                              line, a.strip() + ' / ' + b.strip()))
         allowed.extend(text for n, text in enumerate(chapter.lines, 1)
                        if n not in hidden_lines)
     for path in sorted(glob.glob(os.path.join(src, 'tests', 'ch[0-9][0-9]', '*'))):
@@ -354,6 +375,9 @@ def leak_targets(src, manifest):
         if key in allowed_compact:
             continue
         lines.setdefault(key, (exercise_id, path, line, text))
+    for key, exercise_id, path, line, text in pairs:
+        if len(key) >= MIN_PAIR_CHARS:
+            lines.setdefault(key, (exercise_id, path, line, text))
     names = {}
     for path in sorted(glob.glob(os.path.join(src, 'tests', 'hidden', 'ch[0-9][0-9]'))):
         for suite, name, file, line in scan_tests(path):
@@ -623,18 +647,87 @@ def validate_student(out, manifest, jobs):
     return runs, errors, ', %d of them exercise tests that must fail' % exercise_runs
 
 
+def validate_grading(out, manifest, jobs):
+    """Grading, as tools/grade.py does it, in the solution kit: for each chosen
+    chapter, the book's chapter scores every point; and for each exercise, the
+    chapter with that exercise alone stubbed (every other one solved) loses
+    that exercise's points, every test of it failing, and keeps all others."""
+    kit = os.path.join(out, 'solution')
+    book = exercises.load([os.path.join(kit, c) for c in manifest['chapters']], root=kit,
+                          tests=False)
+    chosen = {e['id']: e for e in manifest['exercises']}
+    work = os.path.join(out, 'validate', 'grading')
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    # One secret for all: verdicts of unchanged exercises are reused.
+    seed = str(int.from_bytes(os.urandom(7), 'little'))
+    runs, errors = [], []
+    for chapter in book.chapters:
+        mine = [e for e in chapter.exercises if e.id in chosen]
+        if not mine:
+            continue
+        cases = [('solution', None)] + [('%s stubbed' % e.id, e) for e in mine]
+        for label, stubbed in cases:
+            name = re.sub(r'[^\w.-]', '_', '%s-%s' % (chapter.number, label))
+            sub = os.path.join(work, 'submissions', name, 'chapters')
+            os.makedirs(sub)
+            lines = chapter.lines if stubbed is None else \
+                exercises.student_edition(chapter, only=stubbed)
+            with open(os.path.join(sub, os.path.basename(chapter.path)), 'w',
+                      encoding='utf-8') as f:
+                f.write('\n'.join(lines))
+            target = os.path.join(work, 'results', name)
+            proc = subprocess.run([sys.executable, os.path.join(kit, 'tools', 'grade.py'),
+                                   '--root', kit, '--chapters', chapter.number,
+                                   '--seed', seed, '--build-jobs', str(jobs),
+                                   '--cache', os.path.join(out, 'validate', 'grade-cache'),
+                                   '--out', target, '--quiet', os.path.dirname(sub)],
+                                  capture_output=True, text=True, env=clean_env())
+            try:
+                with open(os.path.join(target, 'results.json'), encoding='utf-8') as f:
+                    data = json.load(f)
+            except (OSError, ValueError):
+                errors.append('grading %s of chapter %s: no results (%s)' % (
+                    label, chapter.number, (proc.stdout + proc.stderr)[-1500:]))
+                continue
+            for test in data['tests']:
+                exercise_id, full = test['name'].split(' ', 1)
+                status = test['tags'][0]
+                lost = stubbed is not None and exercise_id == stubbed.id
+                runs.append(Run('grading %s' % label, *full.split('.', 1),
+                                passed=status == 'PASS', output=test['output']))
+                if lost and status == 'PASS':
+                    errors.append('grading with %s: %s passes with the stub: it does not '
+                                  'reach the exercise\'s code through its exercise calls'
+                                  % (label, full))
+                elif not lost and status != 'PASS':
+                    errors.append('grading %s of chapter %s: %s %s scores %s:\n    %s' % (
+                        label, chapter.number, exercise_id, full, status,
+                        test['output'].replace('\n', '\n    ')[:1500]))
+            expected = sum(e.points for e in mine) - (stubbed.points if stubbed else 0)
+            if abs(data['score'] - expected) > 1e-6:
+                errors.append('grading %s of chapter %s scores %g, not %g' % (
+                    label, chapter.number, data['score'], expected))
+            if stubbed is not None and not any(
+                    stubbed.id in t['output'] for t in data['tests']
+                    if t['name'].startswith(stubbed.id + ' ')):
+                errors.append('grading with %s: no failure names the exercise (the stub\'s '
+                              'message)' % label)
+    return runs, errors, ' (seed %s)' % seed
+
+
 def validate(args):
     out = os.path.abspath(args.out)
     with open(os.path.join(out, 'solution', 'exercises.json'), encoding='utf-8') as f:
         manifest = json.load(f)
     errors = []
-    for edition in args.edition or EDITIONS:
-        if edition == 'student' and errors:
-            print('validate: student edition not checked: fix the solution edition first')
+    for edition in args.edition or VALIDATIONS:
+        if edition != 'solution' and errors:
+            print('validate: %s not checked: fix the solution edition first' % edition)
             break
         started = time.time()
-        runs, e, note = {'solution': validate_solution,
-                         'student': validate_student}[edition](out, manifest, args.jobs)
+        runs, e, note = {'solution': validate_solution, 'student': validate_student,
+                         'grading': validate_grading}[edition](out, manifest, args.jobs)
         passed = sum(1 for r in runs if r.passed)
         print('validate: %s edition: %d test runs, %d passed, %d failed%s (%.0f s)' % (
             edition, len(runs), passed, len(runs) - passed, note, time.time() - started))
@@ -644,7 +737,8 @@ def validate(args):
     if errors:
         fail('validation failed (%d problems)' % len(errors))
     print('validate: the solutions pass every test; the stubs fail every test of their '
-          'exercise (%d exercises) and only those' % len(manifest['exercises']))
+          'exercise (%d exercises) and only those, in the kits and in grading, one '
+          'exercise stubbed at a time' % len(manifest['exercises']))
 
 
 def main(argv=None):
@@ -661,7 +755,7 @@ def main(argv=None):
     p.add_argument('--edition', default='student', choices=EDITIONS)
     p = sub.add_parser('validate')
     p.add_argument('--out', required=True)
-    p.add_argument('--edition', action='append', choices=EDITIONS)
+    p.add_argument('--edition', action='append', choices=VALIDATIONS)
     p.add_argument('--jobs', type=int, default=os.cpu_count() or 1)
     args = parser.parse_args(argv)
     {'build': build, 'leaks': leaks_command, 'validate': validate}[args.command](args)

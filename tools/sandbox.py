@@ -125,15 +125,6 @@ def compile_command(argv, build_dir, cache_dir=None):
     return args + argv
 
 
-def shareable_dir(parent, name):
-    """A directory under `parent` that the sandbox's user may read (for the
-    worker's binary), with every directory above it traversable."""
-    path = os.path.join(parent, name)
-    os.makedirs(path, exist_ok=True)
-    os.chmod(path, 0o755)
-    return path
-
-
 def protect(paths):
     """Without namespaces the worker sees the file system as its user does:
     make the grader's files unreadable to others."""

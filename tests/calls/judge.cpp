@@ -163,14 +163,23 @@ class Worker {
         return true;
     }
 
-    // Kills the worker (the sandbox ends with it) and says how it ended.
+    // Stops the worker (the sandbox ends with it) and says how it ended:
+    // at once, or, for a worker that closed its end (it is exiting, or it
+    // stopped answering), after a moment's grace.
     std::string Stop(bool kill = true) {
         if (pid <= 0) return "";
-        if (kill) ::kill(pid, SIGKILL);
         close(to);
         close(from);
         int status = 0;
-        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        bool ended = false;
+        for (int waited = 0; !kill && !ended && waited < 200; ++waited) {
+            ended = waitpid(pid, &status, WNOHANG) == pid;
+            if (!ended) usleep(10000);
+        }
+        if (!ended) {
+            ::kill(pid, SIGKILL);
+            while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+            }
         }
         pid = -1;
         if (WIFSIGNALED(status)) return "killed by " + SignalName(WTERMSIG(status));
@@ -184,29 +193,38 @@ class Worker {
         return "ended";
     }
 
-    // Sends the requests (id, bytes) and collects one reply per request, in
-    // order. A worker that crashes, hangs or answers out of turn gets a
-    // failure reply for the request it was on, and a new worker takes the
-    // requests after it; objects kept by the old one are gone.
+    // Sends one test's requests (id, bytes) and collects one reply per
+    // request, in order. A worker that crashes, hangs or answers out of turn
+    // gets a failure reply for the request it was on, and is stopped; the
+    // test's later requests are not asked (its verdict run stops at that
+    // failure), and the next exchange starts a new worker.
     std::vector<std::string> Exchange(
         const std::vector<std::pair<uint64_t, std::string>> &requests) {
         std::vector<std::string> replies;
-        while (replies.size() < requests.size()) {
-            size_t first = replies.size();
-            std::string why;
-            if (!Running() && !Start(&why)) {
-                while (replies.size() < requests.size())
-                    replies.push_back(StatusReply(Status::Crashed, why));
-                break;
-            }
-            std::string out;
-            for (size_t i = first; i < requests.size(); ++i) {
-                uint32_t n = uint32_t(requests[i].second.size() + 8);
-                out.append(reinterpret_cast<const char *>(&n), 4);
-                out.append(reinterpret_cast<const char *>(&requests[i].first), 8);
-                out += requests[i].second;
-            }
-            Pump(out, requests, &replies);
+        std::string why;
+        if (!Running() && !Start(&why)) {
+            while (replies.size() < requests.size())
+                replies.push_back(StatusReply(Status::Crashed, why));
+            return replies;
+        }
+        std::string out;
+        for (const auto &request : requests) {
+            uint32_t n = uint32_t(request.second.size() + 8);
+            out.append(reinterpret_cast<const char *>(&n), 4);
+            out.append(reinterpret_cast<const char *>(&request.first), 8);
+            out += request.second;
+        }
+        Pump(out, requests, &replies);
+        if (replies.size() < requests.size()) {
+            // The last reply says what went wrong; the rest share it.
+            Reader r(replies.back());
+            uint8_t status;
+            std::string what;
+            Get(r, status);
+            Get(r, what);
+            while (replies.size() < requests.size())
+                replies.push_back(StatusReply(
+                    Status(status), "not asked, after an earlier call: " + what));
         }
         return replies;
     }

@@ -914,8 +914,9 @@ inline Bounds3<T> Union(const Bounds3<T> &b, const Point3<T> &p) {
 // Geometry Inline Functions
 template <typename T>
 inline Bounds3<T> Union(const Bounds3<T> &b1, const Bounds3<T> &b2) {
+    using Box = Bounds3<T>;
     // Compute the union of two boxes
-    Bounds3<T> ret;
+    Box ret;
     ret.pMin = Min(b1.pMin, b2.pMin);
     ret.pMax = Max(b1.pMax, b2.pMax);
     return ret;
@@ -923,11 +924,12 @@ inline Bounds3<T> Union(const Bounds3<T> &b1, const Bounds3<T> &b2) {
 // Geometry Inline Functions
 template <typename T>
 inline Bounds3<T> Intersect(const Bounds3<T> &b1, const Bounds3<T> &b2) {
+    using Box = Bounds3<T>;
     // Compute the intersection of two boxes
-    Bounds3<T> ret;
+    Box ret;
     ret.pMin = Max(b1.pMin, b2.pMin);
     ret.pMax = Min(b1.pMax, b2.pMax);
-    return ret.IsEmpty() ? Bounds3<T>() : ret;
+    return ret.IsEmpty() ? Box() : ret;
 }
 // Geometry Inline Functions
 template <typename T>
@@ -988,17 +990,21 @@ inline Bounds2<T> Union(const Bounds2<T> &b, const Point2<T> &p) {
 }
 template <typename T>
 inline Bounds2<T> Union(const Bounds2<T> &b1, const Bounds2<T> &b2) {
-    Bounds2<T> ret;
+    using Box = Bounds2<T>;
+    // Compute the union of two boxes
+    Box ret;
     ret.pMin = Min(b1.pMin, b2.pMin);
     ret.pMax = Max(b1.pMax, b2.pMax);
     return ret;
 }
 template <typename T>
 inline Bounds2<T> Intersect(const Bounds2<T> &b1, const Bounds2<T> &b2) {
-    Bounds2<T> ret;
+    using Box = Bounds2<T>;
+    // Compute the intersection of two boxes
+    Box ret;
     ret.pMin = Max(b1.pMin, b2.pMin);
     ret.pMax = Min(b1.pMax, b2.pMax);
-    return ret.IsEmpty() ? Bounds2<T>() : ret;
+    return ret.IsEmpty() ? Box() : ret;
 }
 template <typename T>
 inline bool Overlaps(const Bounds2<T> &b1, const Bounds2<T> &b2) {

@@ -26,6 +26,9 @@ need texlive-latex-extra       have_sty framed.sty
 need texlive-pictures          have_sty tikz.sty
 need lmodern                   have_sty lmodern.sty
 need libstb-dev    test -f /usr/include/stb/stb_image_write.h
+# The book's citation style (book.md names the file).
+need citation-style-language-styles \
+    test -f /usr/share/citation-style-language/styles/chicago-author-date.csl
 # tools/deps.sh figures: also what make figures needs (the book uses the
 # committed figures and does not).
 if [ "${1:-}" = figures ]; then

@@ -172,8 +172,13 @@ end
 -------------------------------------------------------------------------------
 -- Figures: a short caption for the List of Figures
 
+-- Words after which a full stop does not end a sentence.
+local ABBREVIATIONS = {['e.g'] = true, ['i.e'] = true, cf = true, Fig = true, Eq = true,
+                       vs = true, al = true, etc = true, approx = true}
+
 -- The caption's first sentence: up to the first full stop outside braces and
--- mathematics that ends a word of more than one letter.
+-- mathematics that is followed by a space and a capital (or a command), after
+-- a word that is neither an abbreviation nor an initial.
 local function first_sentence(latex)
   local depth, math, i = 0, false, 1
   while i <= #latex do
@@ -187,9 +192,12 @@ local function first_sentence(latex)
       if c == '{' then depth = depth + 1
       elseif c == '}' then depth = depth - 1
       elseif c == '$' then math = not math
-      elseif c == '.' and depth == 0 and not math and latex:sub(i - 2, i - 1):match('%a%a')
-             and (i == #latex or latex:sub(i + 1, i + 1):match('%s')) then
-        return latex:sub(1, i)
+      elseif c == '.' and depth == 0 and not math
+             and latex:sub(i + 1, i + 2):match('^%s[%u\\]') then
+        local word = latex:sub(1, i - 1):match('([%w%.]*)$')
+        if not ABBREVIATIONS[word] and not word:match('^%u$') then
+          return latex:sub(1, i)
+        end
       end
       i = i + 1
     end

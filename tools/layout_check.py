@@ -16,7 +16,7 @@ The check fails, naming the page and the fragment, on a header that ends a
 page without its first lines of code, on a footer that opens a page without
 the last lines, on a float between a fragment's header and its footer, and on
 a float printed more than MAX_FLOAT_DISTANCE pages after its first citation
-or more than a page before it.
+or more than a page before it, and on a float with a label that nothing cites.
 The labels of the floats come from BOOK.aux.
 """
 import os
@@ -107,7 +107,9 @@ def check(events, labels):
                              pages.get('footer', '?')))
         label = labels.get(name)
         cited = first_cite.get(label) if label else None
-        if cited and page_number(page) is not None and page_number(cited) is not None:
+        if label and not cited:
+            problems.append('page %s: %s (%s) is never cited' % (page, name, label))
+        elif cited and page_number(page) is not None and page_number(cited) is not None:
             distance = page_number(page) - page_number(cited)
             if distance > MAX_FLOAT_DISTANCE:
                 problems.append('page %s: %s (%s) is printed %d pages after its first '

@@ -49,9 +49,10 @@ local function latex_escape(s)
 end
 
 -- pandoc writes a code caret as \^{}, the circumflex accent over nothing,
--- which prints as a small raised hat: code needs the ASCII character.
+-- a small hat at the height of capitals; \lrtcaret (tools/preamble.tex) is
+-- the ASCII character, set larger and lower as code fonts draw it.
 local function code_carets(latex)
-  return (latex:gsub('\\%^{}', '\\textasciicircum{}'))
+  return (latex:gsub('\\%^{}', '\\lrtcaret{}'))
 end
 
 local function split_on(text, separator)

@@ -232,13 +232,14 @@ class WeaveTest(unittest.TestCase):
         self.assertIn('\\begin{fragment}{chunk:1.1}{3}\\fragheader{chunk:1.1}', result.stdout)
 
     def test_caret_in_code_is_the_ascii_character(self):
-        # \^{} is a circumflex accent over nothing: it prints as a raised hat.
+        # \\^{} is a circumflex accent over nothing, a raised hat; \\lrtcaret{}
+        # is the character as code fonts draw it.
         result = self.weave('# Ch\n\nSo `a ^ b` flips.\n\n```cpp\n<<lrt/x.h>>=\n'
                             'int f(int a, int b) { return a ^ b; }\n@\n```\n\n'
                             '```c++\nx ^= 1;\n```\n')
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertNotIn('\\^{}', result.stdout)
-        self.assertEqual(result.stdout.count('\\textasciicircum{}'), 3)
+        self.assertEqual(result.stdout.count('\\lrtcaret{}'), 3)
 
     def test_fragment_examples_come_from_the_chunks(self):
         text = ('# Ch\n\n`Body`{.fragment-header}\n\nThe number `Body`{.fragment-number} '
@@ -328,6 +329,11 @@ class LayoutCheckTest(unittest.TestCase):
             'on page 10',
             'page 15: figure 2.6 (fig:early) is printed 2 pages before its first '
             'citation on page 17'])
+
+    def test_float_never_cited(self):
+        events = [('float', 'figure 3.3', '118'), ('float', 'figure 3.4', '119')]
+        self.assertEqual(self.problems(events, {'figure 3.3': 'fig:disks'}), [
+            'page 118: figure 3.3 (fig:disks) is never cited'])
 
     def test_missing_record_of_a_fragment(self):
         events = self.WHOLE[:1] + self.WHOLE[3:]

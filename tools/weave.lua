@@ -178,8 +178,8 @@ local ABBREVIATIONS = {['e.g'] = true, ['i.e'] = true, cf = true, Fig = true, Eq
                        vs = true, al = true, etc = true, approx = true}
 
 -- The caption's first sentence: up to the first full stop outside braces and
--- mathematics that is followed by a space and a capital (or a command), after
--- a word that is neither an abbreviation nor an initial.
+-- mathematics that is followed by a space and a capital, a command or a
+-- parenthesis, after a word that is neither an abbreviation nor an initial.
 local function first_sentence(latex)
   local depth, math, i = 0, false, 1
   while i <= #latex do
@@ -194,7 +194,7 @@ local function first_sentence(latex)
       elseif c == '}' then depth = depth - 1
       elseif c == '$' then math = not math
       elseif c == '.' and depth == 0 and not math
-             and latex:sub(i + 1, i + 2):match('^%s[%u\\]') then
+             and latex:sub(i + 1, i + 2):match('^%s[%u\\(]') then
         local word = latex:sub(1, i - 1):match('([%w%.]*)$')
         if not ABBREVIATIONS[word] and not word:match('^%u$') then
           return latex:sub(1, i)
@@ -392,6 +392,7 @@ function Pandoc(doc)
     -- pandoc's citeproc, run after this filter, fills the div with id refs.
     doc.blocks:insert(pandoc.Header(1, 'References', pandoc.Attr('references',
                                                                  {'unnumbered'})))
+    doc.blocks:insert(pandoc.RawBlock('latex', '\\markboth{References}{References}'))
     doc.blocks:insert(pandoc.Div({}, pandoc.Attr('refs')))
   end
   doc.blocks:insert(pandoc.RawBlock('latex', fragment_index()))

@@ -61,5 +61,13 @@ if grep -A1 'Overfull \\hbox' "$log" | grep -q '\\T1/lmtt'; then
     echo "weave: code wider than its column" >&2
     status=1
 fi
+# Raster images must print at 300 pixels per inch or more; pdfimages gives
+# each image's resolution at its printed size (columns 13 and 14).
+low=$(pdfimages -list "$out/book.pdf" | awk 'NR > 2 && ($13 < 300 || $14 < 300)')
+if [ -n "$low" ]; then
+    printf '%s\n' "$low" >&2
+    echo "weave: images printed at less than 300 ppi (page, ..., x-ppi, y-ppi above)" >&2
+    status=1
+fi
 python3 "$tools/layout_check.py" "$out/book.layout" || status=1
 exit $status

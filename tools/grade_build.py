@@ -42,7 +42,7 @@ import sandbox  # noqa: E402
 
 JUDGE_CXXFLAGS = ['-std=c++17', '-O2', '-ffp-contract=off', '-w']
 WORKER_CXXFLAGS = ['-std=c++17', '-O0', '-ffp-contract=off', '-Wall', '-Wextra']
-CALL_SOURCES = ['tests/calls/calls.h', 'tests/calls/worker.cpp']
+CALL_SOURCES = ['tests/calls/core.h', 'tests/calls/calls.h', 'tests/calls/worker.cpp']
 
 
 class BuildError(Exception):

@@ -18,15 +18,16 @@
 // machine is tens of microseconds (some tests make a million calls). So the
 // body runs in rounds: a call whose worker reply is not known yet gets a
 // speculative reply from the book's code, so the body can go on, and is sent
-// with the others in one batch at the end of the round. The next round runs
-// the body again with the worker's replies; where the calls the body makes
-// differ from the last round's (a wrong answer changed its path), the rest
-// is asked again. The round in which every reply came from the worker decides
-// the test; the failures of the earlier rounds are thrown away (they are
-// intercepted, not reported). The book's code only ever steers a body that is
-// run again; it never answers for the student.
+// with the others in one batch at the end of the round. Where the worker's
+// replies differ from the speculative ones, the body runs again with them, and
+// what it asks that it did not ask before (a wrong answer changed its path)
+// goes in the next batch. Then the body runs once more, as a plain GoogleTest
+// body, with the worker's replies only (a call still unforeseen is asked on
+// the spot): that run decides the test. The failures of the speculative
+// rounds are intercepted, never reported; the book's code only ever steers a
+// run whose failures are thrown away, and never answers for the student.
 
-#include "calls/calls.h"
+#include "calls/core.h"
 
 #include <gtest/gtest-spi.h>
 
@@ -489,8 +490,14 @@ void RunRounds(void (*body)()) {
         for (size_t i : s.pending)
             requests.emplace_back(s.slots[i].id, s.slots[i].request);
         std::vector<std::string> replies = worker->Exchange(requests);
-        for (size_t k = 0; k < s.pending.size(); ++k)
+        // Where the worker answered exactly as the book's code did, the body
+        // takes the same path again and asks nothing new: no further round.
+        bool asSpeculated = true;
+        for (size_t k = 0; k < s.pending.size(); ++k) {
+            asSpeculated = asSpeculated && s.slots[s.pending[k]].reply == replies[k];
             s.slots[s.pending[k]].reply = replies[k];
+        }
+        if (asSpeculated) break;
     }
     // The verdict: the body once more, as a plain GoogleTest body, every
     // reply the worker's (a call not seen before is asked for on the spot).

@@ -11,7 +11,7 @@
 // message (calls.h encodes both). What the student's code prints goes to the
 // worker's standard output and error, which the judge sends to a log.
 
-#include "calls/calls.h"
+#include "calls/core.h"
 
 #include LRT_CALLS_HEADER
 

@@ -237,6 +237,23 @@ class LintTest(unittest.TestCase):
         self.assertLintError(v, '%s:%d' % (path, line_of(v.text(path), 'Ex2Mean')),
                              ['looks like an exercise', 'ExN_K_Name'])
 
+    def test_exercise_test_declared_with_TEST(self):
+        # Grading could not run it in rounds, and nothing says it reaches the
+        # exercise through its calls.
+        v = Variant(self).replace('tests/ch01/test_sums.cpp',
+                                  'EXERCISE_TEST(Ex1_2_Clamp, InsideAndOutside)',
+                                  'TEST(Ex1_2_Clamp, InsideAndOutside)')
+        self.assertLintError(v, 'tests/ch01/test_sums.cpp:%d' % line_of(
+            v.text('tests/ch01/test_sums.cpp'), 'TEST(Ex1_2_Clamp, InsideAndOutside) {'),
+            ['Ex1_2_Clamp.InsideAndOutside', 'declared with TEST', 'EXERCISE_TEST'])
+
+    def test_hidden_test_with_a_public_name(self):
+        v = Variant(self).replace('tests/hidden/ch01/test_sums_hidden.cpp',
+                                  'EXERCISE_TEST(Ex1_2_ClampHidden, RangeOfOneValue)',
+                                  'EXERCISE_TEST(Ex1_2_Clamp, InsideAndOutside)')
+        self.assertLintError(v, 'tests/hidden/ch01/test_sums_hidden.cpp', [
+            'hidden test Ex1_2_Clamp.InsideAndOutside has the name of a public test'])
+
     def test_make_lint_runs_the_exercise_lint(self):
         result = run(['make', '-n', 'lint'])
         self.assertIn('tools/exercises.py lint', result.stdout)
@@ -454,6 +471,27 @@ class KitTest(unittest.TestCase):
                       % (line_of(read(path), 'total /'), CH2,
                          line_of(read(os.path.join(FIXTURE, CH2)), 'total /')), problems[0])
 
+    def test_planted_pair_of_solution_lines_is_found(self):
+        # Two consecutive solution lines, each of which also stands elsewhere
+        # in the source (so neither alone is a finding), found together.
+        v = Variant(self)
+        pair = ('sumOfSquares += static_cast<long>(value) * value;\n'
+                'return sumOfSquares;\n')
+        v.replace('tests/ch02/test_means.cpp', '#include <stdexcept>\n',
+                  '#include <stdexcept>\n#if 0\n' + pair + '#endif\n')
+        out = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, out)
+        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build', '--src',
+                      v.dir, '--out', out, '--no-book'])
+        self.assertNotEqual(result.returncode, 0)
+        problems = [l for l in result.stderr.splitlines()
+                    if l.startswith('leak: student/tests/ch02/test_means.cpp')]
+        self.assertEqual(len(problems), 1, result.stderr)
+        self.assertIn('solution of ex-1.1 (%s:%d): sumOfSquares += static_cast<long>(value) '
+                      '* value; / return sumOfSquares;' % (
+                          CH1, line_of(read(os.path.join(FIXTURE, CH1)), 'sumOfSquares +=')),
+                      problems[0])
+
     def test_planted_hidden_test_name_is_found(self):
         out = self.copy_of_student_kit()
         path = os.path.join(out, 'student', 'README.md')
@@ -516,6 +554,40 @@ class ValidationTest(unittest.TestCase):
         self.assertIn('Ex1_2_ClampHidden.RangeOfOneValue passes with the stub of ex-1.2',
                       problems[1])
         self.assertIn('validation failed (2 problems)', result.stderr)
+
+
+    def test_the_fixture_validates_in_the_kits_and_in_grading(self):
+        out = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, out)
+        build_kits(self, FIXTURE, out)
+        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'validate',
+                      '--out', out])
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        # Graded: each chapter solved, then each exercise alone stubbed.
+        self.assertRegex(result.stdout, r'grading: 19 test runs, 12 passed, 7 failed')
+        self.assertIn('in the kits and in grading, one exercise stubbed at a time',
+                      result.stdout)
+
+    def test_a_test_that_bypasses_the_calls_is_caught(self):
+        # Ex1_2_Clamp calls Clamp() itself instead of through its exercise
+        # call. In make test that still reaches the student's code, so the
+        # kits' validation cannot tell; grading would check the book's code
+        # instead, and only the grading validation sees it.
+        v = Variant(self).replace('tests/ch01/test_sums.cpp', 'EXPECT_EQ(ex::Clamp(5, 0, 10), 5);',
+                                  'EXPECT_EQ(Clamp(5, 0, 10), 5);')
+        v.replace('tests/ch01/test_sums.cpp', 'EXPECT_EQ(ex::Clamp(-5, 0, 10), 0);',
+                  'EXPECT_EQ(Clamp(-5, 0, 10), 0);')
+        v.replace('tests/ch01/test_sums.cpp', 'EXPECT_EQ(ex::Clamp(15, 0, 10), 10);',
+                  'EXPECT_EQ(Clamp(15, 0, 10), 10);')
+        out = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, out)
+        build_kits(self, v.dir, out, ['01'])
+        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'validate',
+                      '--out', out])
+        self.assertNotEqual(result.returncode, 0)
+        self.assertRegex(result.stdout, r'student edition: \d+ test runs')
+        self.assertIn('grading with ex-1.2 stubbed: Ex1_2_Clamp.InsideAndOutside passes with '
+                      'the stub', result.stderr)
 
 
 if __name__ == '__main__':

@@ -51,7 +51,8 @@ inline std::vector<Float> TriangleMeshAreas(Transform objectToWorld,
         int(vertexIndices.size() / 3), vertexIndices.data(), int(P.size()),
         P.data(), nullptr, nullptr, nullptr);
     std::vector<Float> areas;
-    for (const std::shared_ptr<Shape> &t : triangles) areas.push_back(t->Area());
+    for (const std::shared_ptr<Shape> &t : triangles)
+        areas.push_back(t->Area());
     return areas;
 }
 

@@ -144,7 +144,8 @@ EXERCISE_TEST(Ex4_10_DiskRounding, WithinGamma4OfStoredRing) {
         Float r = Float(std::exp(-27.6 + 55.2 * U(rng)));
         Float ri = (i % 5 == 0) ? 0 : Float(U(rng) * r);
         if (!(ri < r)) continue;
-        Float area = ex::DiskArea(Transform(), false, Float(U(rng)), r, ri, 360);
+        Float h = Float(U(rng));
+        Float area = ex::DiskArea(Transform(), false, h, r, ri, 360);
         ASSERT_LE(RelativeError(area, StoredRingArea(r, ri)), LD(gamma(4)))
             << "r=" << r << " ri=" << ri;
     }
@@ -197,8 +198,8 @@ EXERCISE_TEST(Ex4_11_TriangleRounding, MatchesHeronOfWorldSpaceVertices) {
         if (sine < kMinSine) continue;
         ++tested;
         // The two references agree with each other...
-        ASSERT_LE(RelativeError(area_oracles::ProjectionArea(w0, w1, w2), heron),
-                  1e-15L);
+        LD projections = area_oracles::ProjectionArea(w0, w1, w2);
+        ASSERT_LE(RelativeError(projections, heron), 1e-15L);
         // ...and with Area().
         ASSERT_LE(RelativeError(ex::TriangleArea(toWorld, P[0], P[1], P[2]),
                                 heron),

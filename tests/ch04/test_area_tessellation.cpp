@@ -222,8 +222,8 @@ const std::vector<RingCase> &RingCases() {
             Float ri = (i % 3 == 0) ? 0 : Float(0.9 * U(rng) * r);
             Float h = Float(4 * U(rng) - 2);
             Float phi = (i % 4 == 0) ? 360 : Float(10 + 350 * U(rng));
-            v.push_back({h, r, ri, phi,
-                         TessellationSequence(RingMap(h, r, ri, ToRadians(phi)))});
+            Parametrization map = RingMap(h, r, ri, ToRadians(phi));
+            v.push_back({h, r, ri, phi, TessellationSequence(map)});
         }
         return v;
     }();

@@ -165,12 +165,20 @@ EXERCISE_TEST(Ex2_14_BoundsHidden, EmptyBoxIsTheIdentityOfUnionAndAbsorbsInterse
     EXPECT_TRUE(ex::Intersect(empty, b).IsEmpty());
     EXPECT_TRUE(ex::Intersect(b, empty).IsEmpty());
     EXPECT_EQ(ex::Intersect(b, b), b);
+    // Boxes apart along one axis: the intersection is the empty box itself,
+    // not a box inverted along that axis.
+    EXPECT_EQ(ex::Intersect(b, Bounds3f(Point3f(0, 6, 0), Point3f(1, 7, 1))),
+              empty);
+    EXPECT_EQ(ex::Intersect(Bounds3f(Point3f(-2, 3, 7), Point3f(9, 4, 8)), b),
+              empty);
 }
 
 EXERCISE_TEST(Ex2_14_BoundsHidden, IntegerAndInfiniteBoxes) {
     Bounds3i a(Point3i(0, 0, 0), Point3i(4, 4, 4)), b(Point3i(2, -1, 3), Point3i(9, 1, 7));
     EXPECT_EQ(ex::Union(a, b), Bounds3i(Point3i(0, -1, 0), Point3i(9, 4, 7)));
     EXPECT_EQ(ex::Intersect(a, b), Bounds3i(Point3i(2, 0, 3), Point3i(4, 1, 4)));
+    EXPECT_EQ(ex::Intersect(a, Bounds3i(Point3i(5, 0, 0), Point3i(6, 1, 1))),
+              Bounds3i());
     const Float inf = std::numeric_limits<Float>::infinity();
     Bounds3f all(Point3f(-inf, -inf, -inf), Point3f(inf, inf, inf));
     Bounds3f box(Point3f(1, 2, 3), Point3f(2, 3, 4));

@@ -16,6 +16,8 @@
 
 #include "lrt/lrt.h"
 
+#include "exercise_calls.h"
+
 using namespace lrt;
 
 namespace {
@@ -333,7 +335,7 @@ namespace {
 
 void CheckFrame(const Vector3f &v1) {
     Vector3f v2, v3;
-    CoordinateSystem(v1, &v2, &v3);
+    ex::CoordinateSystem(v1, &v2, &v3);
     const Ld tol = 10 * kU;
     EXPECT_LE(std::abs(LengthLd(v2) - 1), tol) << v1;
     EXPECT_LE(std::abs(LengthLd(v3) - 1), tol) << v1;
@@ -351,8 +353,8 @@ void CheckFrame(const Vector3f &v1) {
 
 }  // namespace
 
-TEST(Ex2_12_Vector3, CoordinateSystemIsOrthonormal) {
-    std::mt19937_64 rng(kSeed + 8);
+EXERCISE_TEST(Ex2_12_Vector3, CoordinateSystemIsOrthonormal) {
+    std::mt19937_64 rng(calls::Seed(kSeed + 8));
     for (int i = 0; i < kRandomCases; ++i) {
         Vector3f v = RandomVector(rng);
         Ld len = LengthLd(v);

@@ -17,6 +17,8 @@
 
 #include "lrt/lrt.h"
 
+#include "exercise_calls.h"
+
 using namespace lrt;
 
 namespace {
@@ -258,15 +260,15 @@ TEST(Bounds3, BoundingSphereContainsCorners) {
 // ---------------------------------------------------------------------------
 // Union, intersection and containment
 
-TEST(Ex2_14_Bounds3, UnionWithEmptyIsIdentity) {
+EXERCISE_TEST(Ex2_14_Bounds3, UnionWithEmptyIsIdentity) {
     Point3f p(1, -2, 3);
     EXPECT_EQ(Union(Bounds3f(), p), Bounds3f(p));
     EXPECT_EQ(Union(Bounds3i(), Point3i(4, 5, 6)), Bounds3i(Point3i(4, 5, 6)));
     Bounds3f b(Point3f(0, 0, 0), Point3f(1, 2, 3));
-    EXPECT_EQ(Union(Bounds3f(), b), b);
-    EXPECT_EQ(Union(b, Bounds3f()), b);
-    EXPECT_EQ(Union(Bounds3f(), Bounds3f()), Bounds3f());
-    EXPECT_TRUE(Union(Bounds3f(), Bounds3f()).IsEmpty());
+    EXPECT_EQ(ex::Union(Bounds3f(), b), b);
+    EXPECT_EQ(ex::Union(b, Bounds3f()), b);
+    EXPECT_EQ(ex::Union(Bounds3f(), Bounds3f()), Bounds3f());
+    EXPECT_TRUE(ex::Union(Bounds3f(), Bounds3f()).IsEmpty());
 }
 
 TEST(Bounds3, UnionOfPointsIsTheirBoundingBox) {
@@ -293,13 +295,13 @@ TEST(Bounds3, UnionOfPointsIsTheirBoundingBox) {
     }
 }
 
-TEST(Ex2_14_Bounds3, UnionContainsBothAndIsSetUnionHull) {
-    std::mt19937_64 rng(kSeed + 6);
+EXERCISE_TEST(Ex2_14_Bounds3, UnionContainsBothAndIsSetUnionHull) {
+    std::mt19937_64 rng(calls::Seed(kSeed + 6));
     for (int i = 0; i < kRandomCases / 20; ++i) {
         Bounds3f a = RandomBox(rng), b = RandomBox(rng);
         Point3f p = RandomPoint(rng);
-        Bounds3f u = Union(a, b), up = Union(a, p);
-        ASSERT_EQ(u, Union(b, a));
+        Bounds3f u = ex::Union(a, b), up = Union(a, p);
+        ASSERT_EQ(u, ex::Union(b, a));
         ASSERT_TRUE(Inside(p, up));
         for (int c = 0; c < 8; ++c) {
             ASSERT_TRUE(Inside(a.Corner(c), u));
@@ -329,7 +331,7 @@ TEST(Bounds3, UnionIgnoresNaNCoordinates) {
     EXPECT_FALSE(InsideExclusive(Point3f(0, 0, kNaN), b));
 }
 
-TEST(Ex2_14_Bounds3, InfiniteCoordinates) {
+EXERCISE_TEST(Ex2_14_Bounds3, InfiniteCoordinates) {
     Bounds3f b(Point3f(0, 0, 0), Point3f(1, 1, 1));
     Bounds3f u = Union(b, Point3f(Infinity, 0, -Infinity));
     EXPECT_EQ(u.pMax.x, Infinity);
@@ -341,23 +343,23 @@ TEST(Ex2_14_Bounds3, InfiniteCoordinates) {
     EXPECT_TRUE(Inside(Point3f(Infinity, 0, 0), all));
     EXPECT_FALSE(InsideExclusive(Point3f(Infinity, 0, 0), all));
     EXPECT_TRUE(InsideExclusive(Point3f(-Infinity, 0, 0), all));
-    EXPECT_EQ(Intersect(all, b), b);
+    EXPECT_EQ(ex::Intersect(all, b), b);
     EXPECT_TRUE(Overlaps(all, b));
     // The empty box overlaps nothing, not even a box of infinite extent.
     EXPECT_FALSE(Overlaps(Bounds3f(), all));
     EXPECT_FALSE(Overlaps(all, Bounds3f()));
-    EXPECT_TRUE(Intersect(all, Bounds3f()).IsEmpty());
+    EXPECT_TRUE(ex::Intersect(all, Bounds3f()).IsEmpty());
 }
 
-TEST(Ex2_14_Bounds3, IntersectIsTheSetIntersection) {
-    std::mt19937_64 rng(kSeed + 7);
+EXERCISE_TEST(Ex2_14_Bounds3, IntersectIsTheSetIntersection) {
+    std::mt19937_64 rng(calls::Seed(kSeed + 7));
     int nonEmpty = 0, empty = 0;
     for (int i = 0; i < kRandomCases / 20; ++i) {
         Bounds3f a = RandomBox(rng), b = RandomBox(rng);
         // Shrink some boxes so that roughly half the pairs are disjoint.
         if (i % 2) b = Bounds3f(b.pMin, b.pMin + (b.pMax - b.pMin) * 0.2f);
-        Bounds3f x = Intersect(a, b);
-        ASSERT_EQ(x, Intersect(b, a));
+        Bounds3f x = ex::Intersect(a, b);
+        ASSERT_EQ(x, ex::Intersect(b, a));
         if (x.IsEmpty()) {
             ++empty;
             ASSERT_EQ(x, Bounds3f()) << "empty results are canonical";
@@ -375,7 +377,7 @@ TEST(Ex2_14_Bounds3, IntersectIsTheSetIntersection) {
     EXPECT_GT(empty, kRandomCases / 200);
 }
 
-TEST(Ex2_14_Bounds3, OverlapsIncludesTouchingBoxes) {
+EXERCISE_TEST(Ex2_14_Bounds3, OverlapsIncludesTouchingBoxes) {
     Bounds3f a(Point3f(0, 0, 0), Point3f(1, 1, 1));
     Bounds3f face(Point3f(1, 0, 0), Point3f(2, 1, 1));
     Bounds3f corner(Point3f(1, 1, 1), Point3f(2, 2, 2));
@@ -385,9 +387,9 @@ TEST(Ex2_14_Bounds3, OverlapsIncludesTouchingBoxes) {
     EXPECT_TRUE(Overlaps(a, corner));
     EXPECT_FALSE(Overlaps(a, apart));
     EXPECT_FALSE(Overlaps(apart, a));
-    EXPECT_TRUE(Intersect(a, face).IsDegenerate());
-    EXPECT_EQ(Intersect(a, corner), Bounds3f(Point3f(1, 1, 1)));
-    EXPECT_TRUE(Intersect(a, apart).IsEmpty());
+    EXPECT_TRUE(ex::Intersect(a, face).IsDegenerate());
+    EXPECT_EQ(ex::Intersect(a, corner), Bounds3f(Point3f(1, 1, 1)));
+    EXPECT_TRUE(ex::Intersect(a, apart).IsEmpty());
     EXPECT_TRUE(Overlaps(a, a));
 }
 
@@ -443,7 +445,7 @@ TEST(Bounds3, InsideExclusivePartitionsAGrid) {
     EXPECT_GT(multiplyCounted, 0);
 }
 
-TEST(Ex2_14_Bounds3, Expand) {
+EXERCISE_TEST(Ex2_14_Bounds3, Expand) {
     Bounds3f b(Point3f(0, 0, 0), Point3f(1, 2, 3));
     Bounds3f e = Expand(b, 1);
     EXPECT_EQ(e, Bounds3f(Point3f(-1, -1, -1), Point3f(2, 3, 4)));
@@ -457,13 +459,13 @@ TEST(Ex2_14_Bounds3, Expand) {
     EXPECT_EQ(Expand(Bounds3f(), MaxFloat), Bounds3f());
     EXPECT_EQ(Expand(Bounds3f(), Infinity), Bounds3f());
     EXPECT_EQ(Expand(Bounds3i(), 5), Bounds3i());
-    std::mt19937_64 rng(kSeed + 9);
+    std::mt19937_64 rng(calls::Seed(kSeed + 9));
     for (int i = 0; i < kRandomCases / 4; ++i) {
         Bounds3f box = RandomBox(rng);
         Float delta = RandomUniform(rng, 0, 5);
-        Bounds3f ex = Expand(box, delta);
-        for (int c = 0; c < 8; ++c) ASSERT_TRUE(Inside(box.Corner(c), ex));
-        ASSERT_EQ(Union(ex, box), ex);
+        Bounds3f grown = Expand(box, delta);
+        for (int c = 0; c < 8; ++c) ASSERT_TRUE(Inside(box.Corner(c), grown));
+        ASSERT_EQ(ex::Union(grown, box), grown);
     }
 }
 

@@ -3,10 +3,11 @@
 //
 //     A = phiMax * integral of rho(t) * sqrt(rho'(t)^2 + z'(t)^2) dt,
 //
-// by adaptive Gauss-Kronrod quadrature in double precision. The test knows
-// the profile of each shape and its derivatives, nothing of the algebra that
-// turns the integral into a closed form. The integrator itself is checked on
-// polynomials and on a torus, whose area follows from Pappus's theorem.
+// by adaptive Gauss-Kronrod quadrature in double precision (area_oracles.h).
+// The test knows the profile of each shape and its derivatives, nothing of
+// the algebra that turns the integral into a closed form. The integrator
+// itself is checked on polynomials and on a torus, whose area follows from
+// Pappus's theorem.
 //
 // The tests that call Area() are public tests of the chapter's exercises
 // (suites Ex4_9_* for the sphere, Ex4_10_* for the disk); the tests of the
@@ -15,12 +16,13 @@
 
 #include "lrt/lrt.h"
 
+#include "area_oracles.h"
+#include "exercise_calls.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
-#include <functional>
-#include <queue>
 #include <random>
 #include <string>
 #include <vector>
@@ -38,135 +40,34 @@ constexpr double kQuadratureRelTol = 1e-13;
 // integrator's tolerance.
 constexpr double kAreaRelTol = 16 * double(MachineEpsilon);
 constexpr double kTotalRelTol = kAreaRelTol + 2 * kQuadratureRelTol;
-// Most bisections the adaptive integrator may make for one integral.
-constexpr int kMaxBisections = 4000;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Gauss-Kronrod 7-15 rule on [-1, 1] (the constants of QUADPACK's qk15).
-// kXgk holds the Kronrod nodes in decreasing order; the odd-numbered ones
-// and 0 are the 7-point Gauss nodes, with the weights kWg.
-constexpr double kXgk[8] = {
-    0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
-    0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
-    0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
-    0.207784955007898467600689403773245, 0.0};
-constexpr double kWgk[8] = {
-    0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
-    0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
-    0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
-    0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
-constexpr double kWg[4] = {
-    0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
-    0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
+using Integrand = area_oracles::Integrand<double>;
+using Integral = area_oracles::Integral<double>;
+using Profile = area_oracles::Profile<double>;
+using ProfilePoint = area_oracles::ProfilePoint<double>;
+using area_oracles::GaussKronrod15;
 
-using Integrand = std::function<double(double)>;
-
-struct Estimate {
-    double value, error;
-};
-
-// One application of the 15-point rule on [a, b]; the error estimate is the
-// difference between the Kronrod and the embedded Gauss result.
-Estimate GaussKronrod15(const Integrand &f, double a, double b) {
-    double c = 0.5 * (a + b), h = 0.5 * (b - a);
-    double fc = f(c);
-    double kronrod = kWgk[7] * fc, gauss = kWg[3] * fc;
-    for (int j = 0; j < 7; ++j) {
-        double x = h * kXgk[j];
-        double sum = f(c - x) + f(c + x);
-        kronrod += kWgk[j] * sum;
-        if (j % 2 == 1) gauss += kWg[j / 2] * sum;
-    }
-    return {kronrod * h, std::abs((kronrod - gauss) * h)};
+Integral Integrate(const Integrand &f, double a, double b) {
+    return area_oracles::Integrate<double>(f, a, b, kQuadratureRelTol);
 }
 
-struct Integral {
-    double value;
-    bool converged;
-};
-
-struct Piece {
-    double a, b;
-    Estimate est;
-    bool operator<(const Piece &p) const { return est.error < p.est.error; }
-};
-
-// Globally adaptive quadrature, as in QUADPACK: keep bisecting the piece
-// with the largest error estimate until the estimates sum to at most relTol
-// times the integral. The rule never evaluates f at a or b.
-Integral Integrate(const Integrand &f, double a, double b,
-                   double relTol = kQuadratureRelTol) {
-    std::priority_queue<Piece> pieces;
-    pieces.push({a, b, GaussKronrod15(f, a, b)});
-    double value = pieces.top().est.value, error = pieces.top().est.error;
-    for (int i = 0; i < kMaxBisections; ++i) {
-        if (error <= relTol * std::abs(value)) break;
-        Piece p = pieces.top();
-        pieces.pop();
-        double m = 0.5 * (p.a + p.b);
-        Piece left{p.a, m, GaussKronrod15(f, p.a, m)};
-        Piece right{m, p.b, GaussKronrod15(f, m, p.b)};
-        value += left.est.value + right.est.value - p.est.value;
-        error += left.est.error + right.est.error - p.est.error;
-        pieces.push(left);
-        pieces.push(right);
-    }
-    // Sum the pieces afresh, so that the running updates leave no trace.
-    double sum = 0, err = 0;
-    for (; !pieces.empty(); pieces.pop()) {
-        sum += pieces.top().est.value;
-        err += pieces.top().est.error;
-    }
-    return {sum, err <= relTol * std::abs(sum)};
-}
-
-// A profile curve (rho(t), z(t)) with its derivatives.
-struct ProfilePoint {
-    double rho, z, drho, dz;
-};
-using Profile = std::function<ProfilePoint(double)>;
-
-// The surface-of-revolution integral for the profile over [t0, t1].
 Integral RevolutionArea(const Profile &profile, double t0, double t1,
                         double phiMax) {
-    Integral in = Integrate(
-        [&](double t) {
-            ProfilePoint p = profile(t);
-            return p.rho * std::sqrt(p.drho * p.drho + p.dz * p.dz);
-        },
-        t0, t1);
-    return {phiMax * in.value, in.converged};
+    return area_oracles::RevolutionArea<double>(profile, t0, t1, phiMax,
+                                                kQuadratureRelTol);
 }
 
-// The sphere's profile as the graph rho = f(z) = sqrt(r^2 - z^2), t = z.
 Profile SphereGraphProfile(double r) {
-    return [r](double z) {
-        double q = (r - z) * (r + z);
-        double f = std::sqrt(q);
-        return ProfilePoint{f, z, -z / f, 1.0};
-    };
+    return area_oracles::SphereGraphProfile<double>(r);
 }
-
-// The sphere's profile by polar angle: rho = r sin t, z = r cos t.
 Profile SpherePolarProfile(double r) {
-    return [r](double t) {
-        return ProfilePoint{r * std::sin(t), r * std::cos(t),
-                            r * std::cos(t), -r * std::sin(t)};
-    };
+    return area_oracles::SpherePolarProfile<double>(r);
 }
-
-// The disk's profile by distance from the axis: rho = t, z = h.
-Profile DiskProfile(double h) {
-    return [h](double t) { return ProfilePoint{t, h, 1.0, 0.0}; };
-}
-
-// The circle that sweeps a torus: center distance R, tube radius r.
+Profile DiskProfile(double h) { return area_oracles::DiskProfile<double>(h); }
 Profile TorusProfile(double R, double r) {
-    return [R, r](double t) {
-        return ProfilePoint{R + r * std::cos(t), r * std::sin(t),
-                            -r * std::sin(t), r * std::cos(t)};
-    };
+    return area_oracles::TorusProfile<double>(R, r);
 }
 
 double RelativeDifference(double a, double b) {
@@ -261,7 +162,7 @@ std::string Describe(const DiskParams &d) {
 TEST(AreaQuadrature, IntegratorIsExactForPolynomials) {
     const double a = -0.7, b = 1.9;
     for (int k = 0; k <= 22; ++k) {
-        Estimate e = GaussKronrod15(
+        area_oracles::Estimate<double> e = GaussKronrod15<double>(
             [k](double x) { return std::pow(x, k); }, a, b);
         double exact = (std::pow(b, k + 1) - std::pow(a, k + 1)) / (k + 1);
         EXPECT_NEAR(e.value, exact, 1e-14 * std::max(1.0, std::abs(exact)))
@@ -305,48 +206,45 @@ TEST(AreaQuadrature, ProfileDerivativesMatchFiniteDifferences) {
         }
 }
 
-TEST(Ex4_9_SphereQuadrature, MatchesGraphProfileIntegral) {
-    ShapeSampler sampler(0x5eed0401);
-    Transform identity;
+EXERCISE_TEST(Ex4_9_SphereQuadrature, MatchesGraphProfileIntegral) {
+    ShapeSampler sampler(calls::Seed(0x5eed0401));
     for (int i = 0; i < kQuadratureCases; ++i) {
         SphereParams s = sampler.Sphere();
-        Sphere sphere(&identity, &identity, false, s.radius, s.zMin, s.zMax,
-                      s.phiMaxDegrees);
+        Float area = ex::SphereArea(Transform(), false, s.radius, s.zMin,
+                                    s.zMax, s.phiMaxDegrees);
         Integral a = SphereAreaByGraph(s);
         ASSERT_TRUE(a.converged) << Describe(s);
-        ASSERT_LE(RelativeDifference(sphere.Area(), a.value), kTotalRelTol)
-            << Describe(s) << ": Area() " << sphere.Area()
-            << ", quadrature " << a.value;
+        ASSERT_LE(RelativeDifference(area, a.value), kTotalRelTol)
+            << Describe(s) << ": Area() " << area << ", quadrature "
+            << a.value;
     }
 }
 
-TEST(Ex4_9_SphereQuadrature, MatchesPolarProfileIntegral) {
-    ShapeSampler sampler(0x5eed0402);
-    Transform identity;
+EXERCISE_TEST(Ex4_9_SphereQuadrature, MatchesPolarProfileIntegral) {
+    ShapeSampler sampler(calls::Seed(0x5eed0402));
     for (int i = 0; i < kQuadratureCases; ++i) {
         SphereParams s = sampler.Sphere();
-        Sphere sphere(&identity, &identity, false, s.radius, s.zMin, s.zMax,
-                      s.phiMaxDegrees);
+        Float area = ex::SphereArea(Transform(), false, s.radius, s.zMin,
+                                    s.zMax, s.phiMaxDegrees);
         Integral a = SphereAreaByPolarAngle(s);
         ASSERT_TRUE(a.converged) << Describe(s);
-        ASSERT_LE(RelativeDifference(sphere.Area(), a.value), kTotalRelTol)
-            << Describe(s) << ": Area() " << sphere.Area()
-            << ", quadrature " << a.value;
+        ASSERT_LE(RelativeDifference(area, a.value), kTotalRelTol)
+            << Describe(s) << ": Area() " << area << ", quadrature "
+            << a.value;
     }
 }
 
-TEST(Ex4_10_DiskQuadrature, MatchesProfileIntegral) {
-    ShapeSampler sampler(0x5eed0403);
-    Transform identity;
+EXERCISE_TEST(Ex4_10_DiskQuadrature, MatchesProfileIntegral) {
+    ShapeSampler sampler(calls::Seed(0x5eed0403));
     for (int i = 0; i < kQuadratureCases; ++i) {
         DiskParams d = sampler.Disk();
-        Disk disk(&identity, &identity, false, d.height, d.radius,
-                  d.innerRadius, d.phiMaxDegrees);
+        Float area = ex::DiskArea(Transform(), false, d.height, d.radius,
+                                  d.innerRadius, d.phiMaxDegrees);
         Integral a = DiskAreaByProfile(d);
         ASSERT_TRUE(a.converged) << Describe(d);
-        ASSERT_LE(RelativeDifference(disk.Area(), a.value), kTotalRelTol)
-            << Describe(d) << ": Area() " << disk.Area()
-            << ", quadrature " << a.value;
+        ASSERT_LE(RelativeDifference(area, a.value), kTotalRelTol)
+            << Describe(d) << ": Area() " << area << ", quadrature "
+            << a.value;
     }
 }
 

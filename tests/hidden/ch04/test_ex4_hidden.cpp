@@ -15,17 +15,20 @@
 //   areas; areas add up), and exact results (right triangles with dyadic
 //   legs, collinear vertices).
 //
-// Every random test has a fixed seed and states its number of cases. Tests
-// that could accept a wrong formula also check that they reject it.
+// Every random test states its number of cases; the seeds change with every
+// grading (calls::Seed), except those of the Monte Carlo estimates, which
+// must pass every time for a right answer. Tests that could accept a wrong
+// formula also check that they reject it.
 
 #include "lrt/lrt.h"
+
+#include "ch04/exercise_calls.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -111,25 +114,6 @@ Fraction RingFraction(double ri, double phiMax, uint64_t seed) {
     return HitOrMiss(hits);
 }
 
-// One mesh and its triangles; the mesh holds the world-space vertices.
-struct Mesh {
-    std::shared_ptr<TriangleMesh> mesh;
-    std::vector<std::unique_ptr<Triangle>> triangles;
-};
-
-Mesh MakeMesh(const Transform *toWorld, const Transform *toObject,
-              const std::vector<int> &indices,
-              const std::vector<Point3f> &P) {
-    Mesh m;
-    m.mesh = std::make_shared<TriangleMesh>(
-        *toWorld, false, int(indices.size() / 3), indices.data(),
-        int(P.size()), P.data(), nullptr, nullptr, nullptr);
-    for (size_t i = 0; i < indices.size() / 3; ++i)
-        m.triangles.emplace_back(
-            new Triangle(toWorld, toObject, false, m.mesh, int(i)));
-    return m;
-}
-
 // Half the length of the cross product of the edges from p0, in long double,
 // and the sine of the angle at p0.
 LD CrossAreaLD(const Point3f &p0, const Point3f &p1, const Point3f &p2,
@@ -163,8 +147,7 @@ LD TriangleBound(LD sine) {
 
 // Whole spheres and hemispheres, asked for directly and through heights and
 // angles that the constructor clamps, over radii from 1e-6 to 2.5e7.
-TEST(Ex4_9_SphereAreaHidden, WholeSpheresAndHemispheresInClosedForm) {
-    Transform identity;
+EXERCISE_TEST(Ex4_9_SphereAreaHidden, WholeSpheresAndHemispheresInClosedForm) {
     for (Float r : {Float(1e-6), Float(0.125), Float(1), Float(3.7),
                     Float(1e3), Float(2.5e7)}) {
         const LD r2 = LD(r) * LD(r);
@@ -183,19 +166,18 @@ TEST(Ex4_9_SphereAreaHidden, WholeSpheresAndHemispheresInClosedForm) {
             {0, r, 180, kPiLD * r2},
             {-r, 0, 90, kPiLD * r2 / 2}};
         for (const Case &c : cases) {
-            Sphere s(&identity, &identity, false, r, c.z0, c.z1, c.degrees);
-            const Shape &shape = s;
-            EXPECT_LE(RelativeError(shape.Area(), c.area), LD(gamma(7)))
+            Float area = ex::SphereArea(Transform(), false, r, c.z0, c.z1,
+                                        c.degrees);
+            EXPECT_LE(RelativeError(area, c.area), LD(gamma(7)))
                 << SphereText(r, c.z0, c.z1, c.degrees) << ": Area() "
-                << shape.Area() << ", exact " << double(c.area);
+                << area << ", exact " << double(c.area);
         }
     }
 }
 
 // Slivers of small phiMax, caps, bands and bands a unit or two in the last
 // place high, against the exact area of the stored surface.
-TEST(Ex4_9_SphereAreaHidden, SliversAndThinBandsWithinGamma3) {
-    Transform identity;
+EXERCISE_TEST(Ex4_9_SphereAreaHidden, SliversAndThinBandsWithinGamma3) {
     bool thetaFormulaFails = false;
     int tested = 0;
     for (Float r : {Float(0.7), Float(42), Float(3e-3)}) {
@@ -209,11 +191,10 @@ TEST(Ex4_9_SphereAreaHidden, SliversAndThinBandsWithinGamma3) {
         for (Float deg : {Float(1e-4), Float(0.01), Float(0.5), Float(1),
                           Float(7.5), Float(45), Float(179.5), Float(359.9)}) {
             for (const auto &b : bands) {
-                Sphere s(&identity, &identity, false, r, b.first, b.second,
-                         deg);
                 Float phi = StoredPhiMax(deg);
                 LD exact = LD(phi) * LD(r) * (LD(b.second) - LD(b.first));
-                Float area = s.Area();
+                Float area = ex::SphereArea(Transform(), false, r, b.first,
+                                            b.second, deg);
                 ASSERT_GT(area, 0) << SphereText(r, b.first, b.second, deg);
                 ASSERT_LE(RelativeError(area, exact), LD(gamma(3)))
                     << SphereText(r, b.first, b.second, deg) << ": Area() "
@@ -238,9 +219,8 @@ TEST(Ex4_9_SphereAreaHidden, SliversAndThinBandsWithinGamma3) {
 // sphere, and the areas of adjacent bands and sectors add up. The heights
 // are multiples of 2^-12 r, so that every sum and difference below is exact
 // in Float and the bands compared really have the same height.
-TEST(Ex4_9_SphereAreaHidden, EqualHeightsEqualAreasAndAdditivity) {
-    Transform identity;
-    std::mt19937_64 rng(0x4e9a11);
+EXERCISE_TEST(Ex4_9_SphereAreaHidden, EqualHeightsEqualAreasAndAdditivity) {
+    std::mt19937_64 rng(calls::Seed(0x4e9a11));
     std::uniform_int_distribution<int> grid(-4096, 4096);
     std::uniform_real_distribution<double> U(0, 1);
     const LD tol = 4 * LD(gamma(3));
@@ -255,11 +235,13 @@ TEST(Ex4_9_SphereAreaHidden, EqualHeightsEqualAreasAndAdditivity) {
         // A second band of the same height, anywhere on the sphere.
         int lo2 = -4096 + int((8192 - height) * U(rng));
         Float deg = Float(1 + 359 * U(rng));
-        Sphere a(&identity, &identity, false, r, lo * unit, hi * unit, deg);
-        Sphere b(&identity, &identity, false, r, lo2 * unit,
-                 (lo2 + height) * unit, deg);
+        auto band = [&](int from, int to, Float degrees) {
+            return ex::SphereArea(Transform(), false, r, from * unit,
+                                  to * unit, degrees);
+        };
+        Float a = band(lo, hi, deg), b = band(lo2, lo2 + height, deg);
         std::string what = SphereText(r, lo * unit, hi * unit, deg);
-        ASSERT_LE(RelativeError(b.Area(), a.Area()), tol)
+        ASSERT_LE(RelativeError(b, a), tol)
             << what << " and the band from " << lo2 * unit;
         // Areas proportional to the polar angle would differ.
         LD thetaA = std::acos(LD(lo) / 4096) - std::acos(LD(hi) / 4096);
@@ -268,20 +250,15 @@ TEST(Ex4_9_SphereAreaHidden, EqualHeightsEqualAreasAndAdditivity) {
         if (RelativeError(thetaB, thetaA) > tol) thetaFormulaFails = true;
         // Split the band at a third height, and the azimuths in two.
         if (k2 > lo && k2 < hi) {
-            Sphere below(&identity, &identity, false, r, lo * unit,
-                         k2 * unit, deg);
-            Sphere above(&identity, &identity, false, r, k2 * unit,
-                         hi * unit, deg);
-            ASSERT_LE(RelativeError(LD(below.Area()) + LD(above.Area()),
-                                    LD(a.Area())),
+            ASSERT_LE(RelativeError(LD(band(lo, k2, deg)) +
+                                        LD(band(k2, hi, deg)),
+                                    LD(a)),
                       tol)
                 << what << " split at " << k2 * unit;
         }
-        Sphere whole(&identity, &identity, false, r, lo * unit, hi * unit,
-                     360);
-        Sphere half(&identity, &identity, false, r, lo * unit, hi * unit,
-                    180);
-        ASSERT_LE(RelativeError(2 * LD(half.Area()), LD(whole.Area())), tol)
+        ASSERT_LE(RelativeError(2 * LD(band(lo, hi, 180)),
+                                LD(band(lo, hi, 360))),
+                  tol)
             << what;
     }
     EXPECT_TRUE(thetaFormulaFails)
@@ -289,30 +266,40 @@ TEST(Ex4_9_SphereAreaHidden, EqualHeightsEqualAreasAndAdditivity) {
 }
 
 // Hit-or-miss estimates of the fraction of the whole sphere, 4 pi r^2, that
-// the partial sphere covers.
-TEST(Ex4_9_SphereAreaHidden, MatchesGaussianPointsOnTheSphere) {
-    Transform identity;
+// the partial sphere covers. (The estimates are computed once, in statics:
+// they do not depend on the code under test, and the grader runs a test's
+// body several times.)
+EXERCISE_TEST(Ex4_9_SphereAreaHidden, MatchesGaussianPointsOnTheSphere) {
     struct Case {
         Float r, z0, z1, degrees;
     };
-    const Case cases[] = {{0.8f, 0, 0.8f, 360},      // hemisphere
+    static const Case cases[] = {{0.8f, 0, 0.8f, 360},      // hemisphere
                           {2, -2, -1.5f, 360},       // cap at the south pole
                           {1, -0.25f, 0.25f, 200},   // equatorial band
                           {3, 2.25f, 2.85f, 330},    // band near the pole
                           {1.25f, -1.25f, 1.25f, 5}, // sliver, pole to pole
                           {0.5f, 0.4f, 0.5f, 60},    // small cap, narrow
                           {4, -3, 1, 123.5f}};
-    uint64_t seed = 0x4e9c0;
-    for (const Case &c : cases) {
-        Sphere s(&identity, &identity, false, c.r, c.z0, c.z1, c.degrees);
+    static const std::vector<Fraction> fractions = [] {
+        std::vector<Fraction> v;
+        uint64_t seed = 0x4e9c0;
+        for (const Case &c : cases)
+            v.push_back(SphereFraction(c.z0 / double(c.r), c.z1 / double(c.r),
+                                       double(c.degrees) * kPi / 180, ++seed));
+        return v;
+    }();
+    for (size_t k = 0; k < fractions.size(); ++k) {
+        const Case &c = cases[k];
+        const Fraction &f = fractions[k];
+        Float area = ex::SphereArea(Transform(), false, c.r, c.z0, c.z1,
+                                    c.degrees);
         double r = c.r, phi = double(c.degrees) * kPi / 180;
-        Fraction f = SphereFraction(c.z0 / r, c.z1 / r, phi, ++seed);
         double whole = 4 * kPi * r * r;
         double estimate = whole * f.p, se = whole * f.se;
         std::string what = SphereText(c.r, c.z0, c.z1, c.degrees);
         ASSERT_GT(se, 0) << what;
-        EXPECT_LE(std::abs(s.Area() - estimate), kSigmas * se)
-            << what << ": Area() " << s.Area() << ", estimate " << estimate
+        EXPECT_LE(std::abs(area - estimate), kSigmas * se)
+            << what << ": Area() " << area << ", estimate " << estimate
             << " +- " << se;
         // Two plausible mistakes, away from the equator where they are
         // large: areas proportional to the polar angle, and thin cylinders
@@ -337,8 +324,7 @@ TEST(Ex4_9_SphereAreaHidden, MatchesGaussianPointsOnTheSphere) {
 
 // Full disks, half disks, sectors and rings whose area is pi r^2 times a
 // simple fraction, over radii from 1e-5 to 6.5e5 and heights far from 0.
-TEST(Ex4_10_DiskAreaHidden, FullDisksHalfDisksAndSectorsInClosedForm) {
-    Transform identity;
+EXERCISE_TEST(Ex4_10_DiskAreaHidden, FullDisksHalfDisksAndSectorsInClosedForm) {
     for (Float r : {Float(1e-5), Float(0.3), Float(1), Float(17),
                     Float(6.5e5)}) {
         const LD r2 = LD(r) * LD(r);
@@ -355,12 +341,11 @@ TEST(Ex4_10_DiskAreaHidden, FullDisksHalfDisksAndSectorsInClosedForm) {
             {0.5f, r / 4, 45, kPiLD * r2 * 15 / 128},
             {0, r / 8, 270, kPiLD * r2 * 3 * 63 / 256}};
         for (const Case &c : cases) {
-            Disk d(&identity, &identity, false, c.height, r, c.ri, c.degrees);
-            const Shape &shape = d;
-            EXPECT_LE(RelativeError(shape.Area(), c.area), LD(gamma(7)))
+            Float area = ex::DiskArea(Transform(), false, c.height, r, c.ri,
+                                      c.degrees);
+            EXPECT_LE(RelativeError(area, c.area), LD(gamma(7)))
                 << DiskText(r, c.ri, c.degrees) << " h=" << c.height
-                << ": Area() " << shape.Area() << ", exact "
-                << double(c.area);
+                << ": Area() " << area << ", exact " << double(c.area);
         }
     }
 }
@@ -368,8 +353,7 @@ TEST(Ex4_10_DiskAreaHidden, FullDisksHalfDisksAndSectorsInClosedForm) {
 // The thinnest rings there are: the inner radius one, two or three units in
 // the last place below the outer one (equal radii describe no surface and
 // the constructor rejects them), with narrow and wide sectors.
-TEST(Ex4_10_DiskAreaHidden, ThinnestRingsAndNarrowSectorsWithinGamma4) {
-    Transform identity;
+EXERCISE_TEST(Ex4_10_DiskAreaHidden, ThinnestRingsAndNarrowSectorsWithinGamma4) {
     bool naiveFails = false;
     int tested = 0;
     for (Float r : {Float(2.5), Float(1e-4), Float(12345.6), Float(0.3),
@@ -379,10 +363,10 @@ TEST(Ex4_10_DiskAreaHidden, ThinnestRingsAndNarrowSectorsWithinGamma4) {
             ri = std::nextafter(ri, Float(0));
             for (Float deg : {Float(1e-3), Float(1), Float(90), Float(359),
                               Float(360)}) {
-                Disk d(&identity, &identity, false, Float(-1.5), r, ri, deg);
                 Float phi = StoredPhiMax(deg);
                 LD exact = LD(phi) / 2 * (LD(r) - LD(ri)) * (LD(r) + LD(ri));
-                Float area = d.Area();
+                Float area =
+                    ex::DiskArea(Transform(), false, Float(-1.5), r, ri, deg);
                 ASSERT_GT(area, 0) << DiskText(r, ri, deg);
                 ASSERT_LE(RelativeError(area, exact), LD(gamma(4)))
                     << DiskText(r, ri, deg) << ": Area() " << area
@@ -399,29 +383,37 @@ TEST(Ex4_10_DiskAreaHidden, ThinnestRingsAndNarrowSectorsWithinGamma4) {
 }
 
 // Hit-or-miss estimates of the fraction of the square [-r, r]^2 that the
-// disk covers.
-TEST(Ex4_10_DiskAreaHidden, MatchesUniformPointsInTheSquare) {
-    Transform identity;
+// disk covers (computed once, as for the sphere).
+EXERCISE_TEST(Ex4_10_DiskAreaHidden, MatchesUniformPointsInTheSquare) {
     struct Case {
         Float height, r, ri, degrees;
     };
-    const Case cases[] = {{0.5f, 1, 0, 360},        // full disk
+    static const Case cases[] = {{0.5f, 1, 0, 360},        // full disk
                           {-3, 2.5f, 2, 360},       // ring
                           {1e3f, 0.75f, 0, 45},     // sector
                           {0, 4, 3.5f, 20},         // narrow ring sector
                           {2, 1.5f, 0.3f, 271},
                           {0, 3, 1, 180}};          // half ring
-    uint64_t seed = 0x4ea0;
-    for (const Case &c : cases) {
-        Disk d(&identity, &identity, false, c.height, c.r, c.ri, c.degrees);
+    static const std::vector<Fraction> fractions = [] {
+        std::vector<Fraction> v;
+        uint64_t seed = 0x4ea0;
+        for (const Case &c : cases)
+            v.push_back(RingFraction(double(c.ri) / double(c.r),
+                                     double(c.degrees) * kPi / 180, ++seed));
+        return v;
+    }();
+    for (size_t k = 0; k < fractions.size(); ++k) {
+        const Case &c = cases[k];
+        const Fraction &f = fractions[k];
+        Float area = ex::DiskArea(Transform(), false, c.height, c.r, c.ri,
+                                  c.degrees);
         double r = c.r, ri = c.ri, phi = double(c.degrees) * kPi / 180;
-        Fraction f = RingFraction(ri / r, phi, ++seed);
         double square = 4 * r * r;
         double estimate = square * f.p, se = square * f.se;
         std::string what = DiskText(c.r, c.ri, c.degrees);
         ASSERT_GT(se, 0) << what;
-        EXPECT_LE(std::abs(d.Area() - estimate), kSigmas * se)
-            << what << ": Area() " << d.Area() << ", estimate " << estimate
+        EXPECT_LE(std::abs(area - estimate), kSigmas * se)
+            << what << ": Area() " << area << ", estimate " << estimate
             << " +- " << se;
         // Plausible mistakes: the square of the width instead of the
         // difference of squares, a missing half, the hole ignored.
@@ -441,7 +433,7 @@ TEST(Ex4_10_DiskAreaHidden, MatchesUniformPointsInTheSquare) {
 // Octahedra, cubes and regular tetrahedra, whose faces have areas known in
 // closed form, with exactly representable vertices; then under a
 // non-uniform scale (exact vertices again) and a rotation (rounded ones).
-TEST(Ex4_11_TriangleAreaHidden, PolyhedraOfKnownArea) {
+EXERCISE_TEST(Ex4_11_TriangleAreaHidden, PolyhedraOfKnownArea) {
     const LD sqrt3 = std::sqrt(LD(3));
     for (Float s : {Float(1), Float(0.375), Float(1024), Float(1.0 / 64)}) {
         const LD s2 = LD(s) * LD(s);
@@ -467,7 +459,6 @@ TEST(Ex4_11_TriangleAreaHidden, PolyhedraOfKnownArea) {
                                     Point3f(-s, s, -s), Point3f(-s, -s, s)};
         std::vector<int> tetIdx = {0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2};
 
-        Transform identity;
         struct Solid {
             const char *name;
             const std::vector<Point3f> &P;
@@ -478,26 +469,24 @@ TEST(Ex4_11_TriangleAreaHidden, PolyhedraOfKnownArea) {
                                 {"cube", cube, cubeIdx, s2 / 2},
                                 {"tetrahedron", tet, tetIdx, 2 * sqrt3 * s2}};
         for (const Solid &solid : solids) {
-            Mesh m = MakeMesh(&identity, &identity, solid.idx, solid.P);
-            for (const auto &t : m.triangles)
-                EXPECT_LE(RelativeError(t->Area(), solid.face), 4 * kU)
+            for (Float area :
+                 ex::TriangleAreas(Transform(), solid.idx, solid.P))
+                EXPECT_LE(RelativeError(area, solid.face), 4 * kU)
                     << solid.name << " s=" << s;
         }
 
         // The cube stretched to a box of sides 2s, 3s, 5s: the world-space
         // area is 2 (6 + 10 + 15) s^2, the object-space area 6 s^2.
-        Transform stretch = Scale(2, 3, 5), unstretch = Inverse(stretch);
-        Mesh box = MakeMesh(&stretch, &unstretch, cubeIdx, cube);
         LD sum = 0;
-        for (const auto &t : box.triangles) sum += t->Area();
+        for (Float area : ex::TriangleAreas(Scale(2, 3, 5), cubeIdx, cube))
+            sum += area;
         EXPECT_LE(RelativeError(sum, 62 * s2), 4 * kU) << "box s=" << s;
 
         // The octahedron rotated: every face keeps its area, up to the
         // rounding of the rotated vertices.
-        Transform rot = Rotate(33, Vector3f(1, 2, 2)), unrot = Inverse(rot);
-        Mesh turned = MakeMesh(&rot, &unrot, octIdx, oct);
-        for (const auto &t : turned.triangles)
-            EXPECT_LE(RelativeError(t->Area(), sqrt3 / 2 * s2), 64 * kU)
+        Transform rot = Rotate(33, Vector3f(1, 2, 2));
+        for (Float area : ex::TriangleAreas(rot, octIdx, oct))
+            EXPECT_LE(RelativeError(area, sqrt3 / 2 * s2), 64 * kU)
                 << "rotated octahedron s=" << s;
     }
 }
@@ -505,13 +494,12 @@ TEST(Ex4_11_TriangleAreaHidden, PolyhedraOfKnownArea) {
 // Right triangles with dyadic legs, in each coordinate plane, far from the
 // origin and with the vertices in every order: the edges and the cross
 // product are exact, so the area is a b / 2 to within the final rounding.
-TEST(Ex4_11_TriangleAreaHidden, RightTrianglesInEveryPlane) {
-    std::mt19937_64 rng(0x4eb1);
+EXERCISE_TEST(Ex4_11_TriangleAreaHidden, RightTrianglesInEveryPlane) {
+    std::mt19937_64 rng(calls::Seed(0x4eb1));
     std::uniform_int_distribution<int> leg(1, 4096), offset(-4096, 4096);
     std::uniform_int_distribution<int> axis(0, 2), order(0, 5);
     const int perms[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
                              {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
-    Transform identity;
     for (int i = 0; i < kTriangleCases; ++i) {
         Float a = Float(leg(rng)) / 256, b = Float(leg(rng)) / 256;
         Point3f o(Float(offset(rng)), Float(offset(rng)), Float(offset(rng)));
@@ -523,9 +511,10 @@ TEST(Ex4_11_TriangleAreaHidden, RightTrianglesInEveryPlane) {
         const int *p = perms[order(rng)];
         std::vector<Point3f> P = {corners[p[0]], corners[p[1]],
                                   corners[p[2]]};
-        Mesh m = MakeMesh(&identity, &identity, {0, 1, 2}, P);
         LD exact = LD(a) * LD(b) / 2;
-        ASSERT_LE(RelativeError(m.triangles[0]->Area(), exact), 4 * kU)
+        ASSERT_LE(RelativeError(ex::TriangleArea(Transform(), P[0], P[1], P[2]),
+                                exact),
+                  4 * kU)
             << "legs " << a << ", " << b << " at " << o << " axes " << u
             << ", " << v;
     }
@@ -534,12 +523,11 @@ TEST(Ex4_11_TriangleAreaHidden, RightTrianglesInEveryPlane) {
 // Needles built around a long segment, with the third vertex beside it,
 // before it or beyond it, and the vertices in a random order, so that the
 // narrow angle (or the angle close to pi) may be at any of them.
-TEST(Ex4_11_TriangleAreaHidden, NeedlesWithTheNarrowAngleAnywhere) {
-    std::mt19937_64 rng(0x4eb2);
+EXERCISE_TEST(Ex4_11_TriangleAreaHidden, NeedlesWithTheNarrowAngleAnywhere) {
+    std::mt19937_64 rng(calls::Seed(0x4eb2));
     std::uniform_real_distribution<double> U(0, 1);
     const int perms[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
                              {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
-    Transform identity;
     bool floatEdgesFail = false;
     int tested = 0;
     for (int i = 0; i < kTriangleCases; ++i) {
@@ -573,8 +561,8 @@ TEST(Ex4_11_TriangleAreaHidden, NeedlesWithTheNarrowAngleAnywhere) {
         LD sine;
         LD exact = CrossAreaLD(P[0], P[1], P[2], &sine);
         if (!(exact > 0)) continue;
-        Mesh m = MakeMesh(&identity, &identity, {0, 1, 2}, P);
-        ASSERT_LE(RelativeError(m.triangles[0]->Area(), exact),
+        ASSERT_LE(RelativeError(ex::TriangleArea(Transform(), P[0], P[1], P[2]),
+                                exact),
                   TriangleBound(sine))
             << "needle " << i << ": " << P[0] << " " << P[1] << " " << P[2];
         ++tested;
@@ -592,11 +580,10 @@ TEST(Ex4_11_TriangleAreaHidden, NeedlesWithTheNarrowAngleAnywhere) {
 // Vertices on one line, p0 + m d with small integers m (equal m: coincident
 // vertices) and dyadic p0 and d, so that they are exact and every pair of
 // edges is exactly parallel: the area must be exactly zero, in any order.
-TEST(Ex4_11_TriangleAreaHidden, CollinearVerticesHaveZeroArea) {
-    std::mt19937_64 rng(0x4eb3);
+EXERCISE_TEST(Ex4_11_TriangleAreaHidden, CollinearVerticesHaveZeroArea) {
+    std::mt19937_64 rng(calls::Seed(0x4eb3));
     std::uniform_int_distribution<int> coord(-4096, 4096), dir(-32, 32),
         mult(-8, 8);
-    Transform identity;
     for (int i = 0; i < kTriangleCases; ++i) {
         Point3f p0(Float(coord(rng)) / 64, Float(coord(rng)) / 64,
                    Float(coord(rng)) / 64);
@@ -605,14 +592,12 @@ TEST(Ex4_11_TriangleAreaHidden, CollinearVerticesHaveZeroArea) {
         int m1 = mult(rng), m2 = mult(rng);
         std::vector<Point3f> P = {p0, p0 + Float(m1) * d, p0 + Float(m2) * d};
         std::rotate(P.begin(), P.begin() + i % 3, P.end());
-        Mesh m = MakeMesh(&identity, &identity, {0, 1, 2}, P);
-        ASSERT_EQ(m.triangles[0]->Area(), 0)
+        ASSERT_EQ(ex::TriangleArea(Transform(), P[0], P[1], P[2]), 0)
             << P[0] << " " << P[1] << " " << P[2];
     }
     // Far from the origin, two vertices coincide.
     const Float big = 1e30f;
     std::vector<Point3f> P = {Point3f(big, -big, big), Point3f(0, 1, 2),
                               Point3f(big, -big, big)};
-    Mesh m = MakeMesh(&identity, &identity, {0, 1, 2}, P);
-    EXPECT_EQ(m.triangles[0]->Area(), 0);
+    EXPECT_EQ(ex::TriangleArea(Transform(), P[0], P[1], P[2]), 0);
 }

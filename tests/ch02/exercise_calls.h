@@ -112,6 +112,11 @@ inline Bounds3i IntBoxIntersect(Bounds3i a, Bounds3i b) {
     return Intersect(a, b);
 }
 
+// The same for rectangles, whose Union() and Intersect() are the same
+// fragments.
+inline Bounds2f RectUnion(Bounds2f a, Bounds2f b) { return Union(a, b); }
+inline Bounds2f RectIntersect(Bounds2f a, Bounds2f b) { return Intersect(a, b); }
+
 }  // namespace direct
 }  // namespace lrt
 
@@ -122,6 +127,8 @@ LRT_EXERCISE_CALL(BoxUnion)
 LRT_EXERCISE_CALL(IntBoxUnion)
 LRT_EXERCISE_CALL(BoxIntersect)
 LRT_EXERCISE_CALL(IntBoxIntersect)
+LRT_EXERCISE_CALL(RectUnion)
+LRT_EXERCISE_CALL(RectIntersect)
 
 namespace lrt {
 namespace ex {
@@ -151,6 +158,12 @@ inline Bounds3f Intersect(const Bounds3f &a, const Bounds3f &b) {
 }
 inline Bounds3i Intersect(const Bounds3i &a, const Bounds3i &b) {
     return IntBoxIntersect(a, b);
+}
+inline Bounds2f Union(const Bounds2f &a, const Bounds2f &b) {
+    return RectUnion(a, b);
+}
+inline Bounds2f Intersect(const Bounds2f &a, const Bounds2f &b) {
+    return RectIntersect(a, b);
 }
 
 }  // namespace ex

@@ -251,8 +251,11 @@ class LintTest(unittest.TestCase):
         v = Variant(self).replace('tests/hidden/ch01/test_sums_hidden.cpp',
                                   'EXERCISE_TEST(Ex1_2_ClampHidden, RangeOfOneValue)',
                                   'EXERCISE_TEST(Ex1_2_Clamp, InsideAndOutside)')
-        self.assertLintError(v, 'tests/hidden/ch01/test_sums_hidden.cpp', [
-            'hidden test Ex1_2_Clamp.InsideAndOutside has the name of a public test'])
+        self.assertLintError(v, 'tests/hidden/ch01/test_sums_hidden.cpp:%d' % line_of(
+            v.text('tests/hidden/ch01/test_sums_hidden.cpp'),
+            'EXERCISE_TEST(Ex1_2_Clamp, InsideAndOutside) { EXPECT_EQ(ex::Clamp(7, 3, 3), 3); }'),
+            ['hidden test Ex1_2_Clamp.InsideAndOutside has the name of a public test '
+             '(tests/ch01/test_sums.cpp:'])
 
     def test_make_lint_runs_the_exercise_lint(self):
         result = run(['make', '-n', 'lint'])

@@ -50,7 +50,9 @@ lib: lint
 	$(ASOF) ASOF=$(LAST) -j$(JOBS) lib
 
 # The code as of chapter N is the tangle of chapters 1..N; it must compile and
-# pass the tests of chapters 1..N, so no chapter leans on a later one.
+# pass the tests of chapters 1..N, so no chapter leans on a later one. The
+# tools' own tests (tests/tools) run with the whole set, once: they do not
+# depend on FLOAT or SANITIZE.
 test: lint
 	@bins=(); \
 	for n in $(PREFIXES); do \
@@ -58,7 +60,8 @@ test: lint
 	    $(ASOF) ASOF=$$n ONLY=$(CH) -j$(JOBS) tests; \
 	    bins+=($$($(ASOF) -s ASOF=$$n ONLY=$(CH) list-tests)); \
 	done; \
-	python3 tools/runtests.py $(if $(CH),,--python-tests tests/tools) "$${bins[@]}"
+	python3 tools/runtests.py $(if $(CH)$(FLOAT)$(SANITIZE),,--python-tests tests/tools) \
+	    "$${bins[@]}"
 
 compile_commands.json: tangle
 	python3 tools/compile_commands.py --src tangled > $@

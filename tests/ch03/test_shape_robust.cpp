@@ -143,7 +143,7 @@ struct Counts {
 
 EXERCISE_TEST(Ex3_22_Reintersection, SpawnedRaysNeverRehitTheirSurface) {
     Rng rng(lrt::calls::Seed(340));
-    const int hitsPerShape = lrt::calls::Cases(kHitsPerShape, 100);
+    const int hitsPerShape = lrt::calls::Cases(kHitsPerShape, 250);
     std::vector<double> scales = Scales();
     std::printf("[ spawn    ] %-8s %-15s %7s %11s %9s %9s %9s %9s %9s %s\n",
                 "scale", "shape", "spawned", "mean pError", "lrt+offs",
@@ -310,7 +310,7 @@ EXERCISE_TEST(Ex3_22_FixedEpsilon, FailsAtLargeAndSmallScalesWhereOffsetsSucceed
     // (a light leak); a ray spawned with OffsetRayOrigin() does not. Large
     // scales are covered by the self-intersection counts of the test above.
     Rng rng(lrt::calls::Seed(342));
-    const int rays = lrt::calls::Cases(2000, 300);
+    const int rays = lrt::calls::Cases(2000, 1000);
     std::printf("[ leak     ] %-8s %9s %12s %12s\n", "scale", "gap",
                 "fixed eps", "robust");
     long leaksAtSmallest = -1;

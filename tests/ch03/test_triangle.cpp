@@ -267,7 +267,7 @@ const double kEps = std::numeric_limits<Float>::epsilon();
 // double-precision oracle.
 
 EXERCISE_TEST(Ex3_23_Triangle, AgreesWithDoublePrecisionOracle) {
-    const int kRays = calls::Cases(100000, 10000);
+    const int kRays = calls::Cases(100000, 25000);
     Rng rng(calls::Seed(0x7e1a5eed));
     int hits = 0, oracleHits = 0, disagreements = 0, badDisagreements = 0;
     int randomDisagreements = 0;  // among the rays not aimed near an edge
@@ -556,7 +556,7 @@ EXERCISE_TEST(Ex3_23_Triangle, DegenerateUVGivesFrameAroundNormal) {
 // and its normals are the transformed object-space normals, negated with
 // reverseOrientation, for mirroring transformations too.
 EXERCISE_TEST(Ex3_23_Triangle, TransformedMeshesMatchObjectSpace) {
-    const int kRaysPerCase = calls::Cases(5000, 500);
+    const int kRaysPerCase = calls::Cases(5000, 1000);
     std::vector<Transform> transforms = {
         Rotate(37, Vector3f(1, 2, 3)) * Scale(2, Float(0.5), 3),
         Scale(-1, 1, 1),
@@ -666,7 +666,7 @@ TEST(Triangle, Bounds) {
 // Triangles of zero area, exactly degenerate in floating point, are never
 // hit, whatever the ray; neither Intersect() nor IntersectP() crashes.
 EXERCISE_TEST(Ex3_23_Triangle, DegenerateTrianglesNeverHit) {
-    const int kRays = calls::Cases(100000, 12000);
+    const int kRays = calls::Cases(100000, 24000);
     std::vector<std::array<Point3f, 3>> cases = {
         {Point3f(0, 0, 0), Point3f(1, 2, 3), Point3f(2, 4, 6)},  // collinear
         {Point3f(-1, 0, 0), Point3f(1, 0, 0), Point3f(3, 0, 0)},
@@ -866,73 +866,98 @@ EXERCISE_TEST(Ex3_23_Triangle, FaceIndicesAndShapePointer) {
 // scales from 1e-3 to 1e4 and at distances from the origin up to 100 times
 // the triangle's size. (OffsetRayOrigin() is exercise ex-3.22's code; it
 // runs here, in the test, as the book has it.)
+//
+// The spawned rays start at the hit points that the calls return, so the
+// test first finds every hit and then traces every spawned ray: the
+// grader's judge, which collects a test's calls and has them answered
+// together (tests/calls/judge.cpp), then needs one more round for the
+// spawned rays, not one per hit whose answer differs from the book's.
 EXERCISE_TEST(Ex3_23_Triangle, SpawnedRaysDoNotReintersect) {
-    const int kRaysPerScale = calls::Cases(20000, 1500);
+    const int kRaysPerScale = calls::Cases(20000, 3000);
+    const int kRaysPerMesh = calls::Cases(500, 250);
     Rng rng(calls::Seed(2024));
-    int spawned = 0, selfHits = 0;
+    // A hit on a triangle, and the directions of the rays to spawn from it,
+    // drawn whether or not the triangle is hit.
+    struct Spawn {
+        double scale;
+        Point3f p[3];
+        Vector3f w[2];
+        Point3f hit;
+        Vector3f pError;
+        Normal3f n;
+    };
+    std::vector<Spawn> spawns;
     for (int e = -3; e <= 4; ++e) {
         double s = std::pow(10.0, e);
         for (int i = 0; i < kRaysPerScale; ++i) {
             D3 center = Mul(s * std::pow(10.0, rng.Uniform(0, 2)),
                             rng.InBall());
-            Point3f p[3];
-            for (Point3f &q : p) q = ToP(Add(center, Mul(s, rng.InBall())));
-            MeshSpec tri = OneTriangle(p[0], p[1], p[2]);
-            D3 pd[3] = {ToD(p[0]), ToD(p[1]), ToD(p[2])};
+            Spawn sp;
+            sp.scale = s;
+            for (Point3f &q : sp.p) q = ToP(Add(center, Mul(s, rng.InBall())));
+            D3 pd[3] = {ToD(sp.p[0]), ToD(sp.p[1]), ToD(sp.p[2])};
             double w0 = rng.Uniform(), w1 = rng.Uniform(), w2 = rng.Uniform();
             double sum = w0 + w1 + w2;
             D3 target = Add(Mul(w0 / sum, pd[0]),
                             Add(Mul(w1 / sum, pd[1]), Mul(w2 / sum, pd[2])));
             Point3f o = ToP(Add(target, Mul(3 * s, rng.OnSphere())));
             Ray ray(o, ToV(Sub(target, ToD(o))));
-            TriangleHit h = ex::IntersectTriangleOf(tri, 0, ray, Float(0));
+            for (Vector3f &w : sp.w) w = ToV(rng.OnSphere());
+            TriangleHit h = ex::IntersectTriangleOf(
+                OneTriangle(sp.p[0], sp.p[1], sp.p[2]), 0, ray, Float(0));
             if (!h.hit) continue;
-            SurfaceInteraction si = ex::ToSurfaceInteraction(h.isect);
-            for (int k = 0; k < 2; ++k) {
-                Vector3f w = ToV(rng.OnSphere());
-                if (Dot(w, si.n) == 0) continue;
-                Point3f po = OffsetRayOrigin(si.p, si.pError, si.n, w);
-                Ray r(po, w);
-                ++spawned;
-                if (ex::IntersectTriangleOf(tri, 0, r, Float(0)).hitP) {
-                    ++selfHits;
-                    if (selfHits < 5)
-                        ADD_FAILURE() << "scale " << s << " ray " << i
-                                      << " reintersects";
-                }
-            }
+            sp.hit = h.isect.p;
+            sp.pError = h.isect.pError;
+            sp.n = h.isect.n;
+            spawns.push_back(sp);
         }
     }
+    // The same for convex closed meshes, with one outward direction per hit.
+    std::vector<calls::Handle> meshes;
+    std::vector<std::pair<size_t, Ray>> outward;  // mesh, spawned ray
+    for (int e = -3; e <= 4; e += 1) {
+        Float r = Float(std::pow(10.0, e));
+        ClosedMesh m =
+            IcoSphere(2, r, Point3f(Float(0.3) * r, -2 * r, Float(0.7) * r));
+        meshes.push_back(ex::MakeMesh(Spec(m.p, m.indices)));
+        for (int i = 0; i < kRaysPerMesh; ++i) {
+            D3 dir = rng.OnSphere();
+            Point3f o = ToP(Add(ToD(m.center), Mul(3 * double(r), dir)));
+            Ray ray(o, ToV(Sub(ToD(m.center), ToD(o))) +
+                           ToV(Mul(0.5 * double(r), rng.InBall())));
+            Vector3f w = ToV(rng.OnSphere());
+            MeshHit nearest = ex::IntersectMesh(meshes.back(), ray);
+            if (nearest.triangle < 0) continue;
+            const SurfaceHit &best = nearest.isect;
+            if (Dot(w, best.n) < 0) w = -w;
+            outward.emplace_back(
+                meshes.size() - 1,
+                Ray(OffsetRayOrigin(best.p, best.pError, best.n, w), w));
+        }
+    }
+
+    int spawned = 0, selfHits = 0;
+    for (const Spawn &sp : spawns)
+        for (const Vector3f &w : sp.w) {
+            if (Dot(w, sp.n) == 0) continue;
+            Ray r(OffsetRayOrigin(sp.hit, sp.pError, sp.n, w), w);
+            ++spawned;
+            TriangleHit again = ex::IntersectTriangleOf(
+                OneTriangle(sp.p[0], sp.p[1], sp.p[2]), 0, r, Float(0));
+            if (again.hitP && ++selfHits < 5)
+                ADD_FAILURE() << "scale " << sp.scale << ": the ray " << r
+                              << " spawned from " << sp.hit << " reintersects";
+        }
     std::printf("[ spawn    ] %d spawned rays, %d self-intersections\n",
                 spawned, selfHits);
     EXPECT_EQ(selfHits, 0);
     EXPECT_GT(spawned, 8 * kRaysPerScale);
 
-    // Outward rays from a convex closed mesh hit none of its triangles.
-    int meshSpawned = 0, meshHits = 0;
-    const int raysPerMesh = calls::Cases(500, 150);
-    for (int e = -3; e <= 4; e += 1) {
-        Float r = Float(std::pow(10.0, e));
-        ClosedMesh m =
-            IcoSphere(2, r, Point3f(Float(0.3) * r, -2 * r, Float(0.7) * r));
-        calls::Handle tris = ex::MakeMesh(Spec(m.p, m.indices));
-        for (int i = 0; i < raysPerMesh; ++i) {
-            D3 dir = rng.OnSphere();
-            Point3f o = ToP(Add(ToD(m.center), Mul(3 * double(r), dir)));
-            Ray ray(o, ToV(Sub(ToD(m.center), ToD(o))) +
-                           ToV(Mul(0.5 * double(r), rng.InBall())));
-            MeshHit nearest = ex::IntersectMesh(tris, ray);
-            if (nearest.triangle < 0) continue;
-            SurfaceInteraction best = ex::ToSurfaceInteraction(nearest.isect);
-            Vector3f w = ToV(rng.OnSphere());
-            if (Dot(w, best.n) < 0) w = -w;
-            Ray out(OffsetRayOrigin(best.p, best.pError, best.n, w), w);
-            ++meshSpawned;
-            meshHits += ex::HitsMesh(tris, out);
-        }
-    }
-    std::printf("[ spawn    ] %d outward rays from closed meshes, %d hits\n",
-                meshSpawned, meshHits);
+    int meshHits = 0;
+    for (const auto &out : outward)
+        meshHits += ex::HitsMesh(meshes[out.first], out.second);
+    std::printf("[ spawn    ] %zu outward rays from closed meshes, %d hits\n",
+                outward.size(), meshHits);
     EXPECT_EQ(meshHits, 0);
 }
 
@@ -1008,8 +1033,8 @@ bool MollerTrumboreFloat(const Point3f &p0, const Point3f &p1,
 }  // namespace
 
 EXERCISE_TEST(Ex3_23_TriangleWatertight, RaysAtSharedEdgesAndVertices) {
-    // 16 cases: 1,120,000 rays in `make test`, 40,000 when graded.
-    const int kRaysPerCase = calls::Cases(70000, 2500);
+    // 16 cases: 1,120,000 rays in `make test`, 80,000 when graded.
+    const int kRaysPerCase = calls::Cases(70000, 5000);
     struct Placement {
         Float size;
         Point3f center;
@@ -1116,7 +1141,7 @@ EXERCISE_TEST(Ex3_23_TriangleWatertight, RaysAtSharedEdgesAndVertices) {
 // Rays from random points inside closed meshes in random directions always
 // hit the mesh (all triangles tested).
 EXERCISE_TEST(Ex3_23_TriangleWatertight, RandomRaysFromInsideAlwaysHit) {
-    const int kRaysPerCase = calls::Cases(10000, 1000);
+    const int kRaysPerCase = calls::Cases(10000, 2000);
     Rng rng(calls::Seed(31337));
     long long rays = 0, misses = 0;
     for (int kind = 0; kind < 2; ++kind)

@@ -133,7 +133,7 @@ EXERCISE_TEST(Ex3_22_OffsetOriginHidden, EveryCoordinateMovesByItsShareOfTheSupp
     // less, not in the wrong direction, and not at all where n_i or d is
     // zero. And every corner of the box must be on or behind the plane
     // through the result.
-    const int kCases = calls::Cases(60000, 15000);
+    const int kCases = calls::Cases(60000, 30000);
     Rng rng(calls::Seed(0x3a22));
     const LD eps = LD(MachineEpsilon);
     const LD tiny = LD(std::numeric_limits<Float>::denorm_min());
@@ -514,7 +514,7 @@ EXERCISE_TEST(Ex3_23_RayTriangleHidden, UnnormalizedAndPlanarDirectionsAgreeWith
     // 1e6, a fifth of them with one component exactly zero and a tenth
     // with two, and tMax infinite or within 1% of the hit; rays within
     // 1e-4 (barycentric) of an edge are left out.
-    const int kCases = calls::Cases(40000, 8000);
+    const int kCases = calls::Cases(40000, 16000);
     Rng rng(calls::Seed(0x3c23));
     int hits = 0, misses = 0, planar = 0;
     for (int c = 0; c < kCases; ++c) {
@@ -627,7 +627,7 @@ EXERCISE_TEST(Ex3_23_WatertightHidden, SheetsSeenAlongTheAxesAndObliquely) {
     // at the shared vertices of a jittered triangulated square and at
     // points on its inner edges, must hit at least one of its triangles.
     Rng rng(calls::Seed(0x3d23));
-    const int raysPerSheet = calls::Cases(3000, 1000);
+    const int raysPerSheet = calls::Cases(3000, 2000);
     long rays = 0, failures = 0;
     for (int axis = 0; axis < 3; ++axis)
         for (Float h : {Float(0), Float(0.3f), Float(-1234.5f)}) {
@@ -711,7 +711,7 @@ EXERCISE_TEST(Ex3_23_WatertightHidden, LatitudeLongitudeSphereFromInside) {
             }
         Rng rng(calls::Seed(0x3e23));
         long failures = 0;
-        const int rays = calls::Cases(8000, 2000);
+        const int rays = calls::Cases(8000, 4000);
         for (int i = 0; i < rays; ++i) {
             Point3f target;
             std::vector<int> cand;

@@ -21,7 +21,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace lrt {
@@ -29,7 +28,7 @@ namespace lrt {
 // ---------------------------------------------------------------------------
 // ex-3.22: spawning rays
 
-// What Interaction::SpawnRay*() use of an interaction.
+// The parts of an Interaction that its SpawnRay*() methods use.
 struct SpawnPoint {
     Point3f p;
     Vector3f pError;
@@ -112,8 +111,8 @@ struct PlyValues {
     LRT_FIELDS(p, n, uv, vertexIndices)
 };
 
-// The triangles that CreatePLYMesh() makes of a file: how many, their world
-// bounds, and the nearest hit of a ray among them.
+// The triangles that CreatePLYMesh() makes of a file, as their world bounds,
+// and the nearest hit of a ray among them.
 struct PlyShapes {
     std::vector<Bounds3f> worldBounds;
     MeshHit nearest;

@@ -75,6 +75,28 @@ struct SurfaceHit {
                shapeIndex)
 };
 
+// Calls f(h.part, si.part) for each part of a SurfaceInteraction si that a
+// SurfaceHit h holds (all but the shape), to copy them either way.
+template <typename Hit, typename Interaction, typename F>
+void ForEachPart(Hit &h, Interaction &si, F f) {
+    f(h.p, si.p);
+    f(h.pError, si.pError);
+    f(h.wo, si.wo);
+    f(h.uv, si.uv);
+    f(h.time, si.time);
+    f(h.n, si.n);
+    f(h.dpdu, si.dpdu);
+    f(h.dpdv, si.dpdv);
+    f(h.dndu, si.dndu);
+    f(h.dndv, si.dndv);
+    f(h.shadingN, si.shading.n);
+    f(h.shadingDpdu, si.shading.dpdu);
+    f(h.shadingDpdv, si.shading.dpdv);
+    f(h.shadingDndu, si.shading.dndu);
+    f(h.shadingDndv, si.shading.dndv);
+    f(h.faceIndex, si.faceIndex);
+}
+
 // One ray against one triangle: Intersect() (with the tHit it was given,
 // which a miss must leave alone) and IntersectP().
 struct TriangleHit {
@@ -124,25 +146,15 @@ namespace direct {
 // Helpers of the calls below; they are not calls themselves.
 namespace detail {
 
+// An interaction at the point, for its SpawnRay*() methods.
+inline Interaction At(const SpawnPoint &p) {
+    return Interaction(p.p, p.n, p.pError, Vector3f(0, 0, 0), p.time);
+}
+
 inline SurfaceHit Values(const SurfaceInteraction &si,
                          const std::vector<std::shared_ptr<Shape>> &shapes) {
     SurfaceHit h;
-    h.p = si.p;
-    h.pError = si.pError;
-    h.wo = si.wo;
-    h.uv = si.uv;
-    h.time = si.time;
-    h.n = si.n;
-    h.dpdu = si.dpdu;
-    h.dpdv = si.dpdv;
-    h.dndu = si.dndu;
-    h.dndv = si.dndv;
-    h.shadingN = si.shading.n;
-    h.shadingDpdu = si.shading.dpdu;
-    h.shadingDpdv = si.shading.dpdv;
-    h.shadingDndu = si.shading.dndu;
-    h.shadingDndv = si.shading.dndv;
-    h.faceIndex = si.faceIndex;
+    ForEachPart(h, si, [](auto &part, const auto &from) { part = from; });
     for (size_t k = 0; k < shapes.size(); ++k)
         if (si.shape == shapes[k].get()) h.shapeIndex = int(k);
     return h;
@@ -151,8 +163,11 @@ inline SurfaceHit Values(const SurfaceInteraction &si,
 // A mesh's triangles with the transformations they point to.
 struct BuiltMesh {
     explicit BuiltMesh(const MeshSpec &m)
-        : objectToWorld(m.objectToWorld), worldToObject(Inverse(m.objectToWorld)) {
-        auto data = [](const auto &v) { return v.empty() ? nullptr : v.data(); };
+        : objectToWorld(m.objectToWorld),
+          worldToObject(Inverse(m.objectToWorld)) {
+        auto data = [](const auto &v) {
+            return v.empty() ? nullptr : v.data();
+        };
         triangles = CreateTriangleMesh(
             &objectToWorld, &worldToObject, m.reverseOrientation,
             int(m.indices.size() / 3), data(m.indices), int(m.p.size()),
@@ -166,7 +181,8 @@ struct BuiltMesh {
 
 inline const Shape &TriangleOf(const BuiltMesh &m, int k) {
     if (k < 0 || size_t(k) >= m.triangles.size())
-        throw std::out_of_range("the mesh has no triangle " + std::to_string(k));
+        throw std::out_of_range("the mesh has no triangle " +
+                                std::to_string(k));
     return *m.triangles[size_t(k)];
 }
 
@@ -204,7 +220,8 @@ auto WithFile(const std::string &name, const std::string &bytes, F &&use) {
         name == "..")
         throw std::invalid_argument("not a plain file name: \"" + name + "\"");
     const char *tmp = std::getenv("TMPDIR");
-    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/lrt-ply-XXXXXX";
+    std::string pattern =
+        std::string(tmp && *tmp ? tmp : "/tmp") + "/lrt-ply-XXXXXX";
     if (!mkdtemp(&pattern[0]))
         throw std::runtime_error("cannot make a directory in " + pattern);
     const std::string path = pattern + "/" + name;
@@ -216,7 +233,8 @@ auto WithFile(const std::string &name, const std::string &bytes, F &&use) {
         }
     } remove{pattern, path};
     std::FILE *f = std::fopen(path.c_str(), "wb");
-    bool ok = f && std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    bool ok =
+        f && std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
     if (f && std::fclose(f) != 0) ok = false;
     if (!ok) throw std::runtime_error("cannot write " + path);
     return use(path);
@@ -232,19 +250,15 @@ inline Point3f OffsetRayOrigin(Point3f p, Vector3f pError, Normal3f n,
 }
 
 inline Ray SpawnRayFrom(SpawnPoint from, Vector3f d) {
-    return Interaction(from.p, from.n, from.pError, Vector3f(0, 0, 0), from.time)
-        .SpawnRay(d);
+    return detail::At(from).SpawnRay(d);
 }
 
 inline Ray SpawnRayToPoint(SpawnPoint from, Point3f to) {
-    return Interaction(from.p, from.n, from.pError, Vector3f(0, 0, 0), from.time)
-        .SpawnRayTo(to);
+    return detail::At(from).SpawnRayTo(to);
 }
 
 inline Ray SpawnRayBetween(SpawnPoint from, SpawnPoint to) {
-    Interaction a(from.p, from.n, from.pError, Vector3f(0, 0, 0), from.time);
-    Interaction b(to.p, to.n, to.pError, Vector3f(0, 0, 0), to.time);
-    return a.SpawnRayTo(b);
+    return detail::At(from).SpawnRayTo(detail::At(to));
 }
 
 // ex-3.23 ------------------------------------------------------------------
@@ -352,22 +366,7 @@ inline Ray SpawnRayTo(const Interaction &it, const Interaction &it2) {
 // A SurfaceInteraction with the parts that a call returns (no shape).
 inline SurfaceInteraction ToSurfaceInteraction(const SurfaceHit &h) {
     SurfaceInteraction si;
-    si.p = h.p;
-    si.pError = h.pError;
-    si.wo = h.wo;
-    si.uv = h.uv;
-    si.time = h.time;
-    si.n = h.n;
-    si.dpdu = h.dpdu;
-    si.dpdv = h.dpdv;
-    si.dndu = h.dndu;
-    si.dndv = h.dndv;
-    si.shading.n = h.shadingN;
-    si.shading.dpdu = h.shadingDpdu;
-    si.shading.dpdv = h.shadingDpdv;
-    si.shading.dndu = h.shadingDndu;
-    si.shading.dndv = h.shadingDndv;
-    si.faceIndex = h.faceIndex;
+    ForEachPart(h, si, [](const auto &from, auto &part) { part = from; });
     return si;
 }
 

@@ -688,8 +688,8 @@ EXERCISE_TEST(Ex3_23_Triangle, DegenerateTrianglesNeverHit) {
                                        moved ? &unshift : nullptr)[0]
                              ->WorldBound();
             EXPECT_FALSE(b.pMin.HasNaNs() || b.pMax.HasNaNs());
-            calls::Handle tri = ex::MakeMesh(
-                Spec({c[0], c[1], c[2]}, {0, 1, 2}, moved ? shift : Transform()));
+            calls::Handle tri = ex::MakeMesh(Spec(
+                {c[0], c[1], c[2]}, {0, 1, 2}, moved ? shift : Transform()));
             D3 off = moved ? D3{4, -2, 8} : D3{0, 0, 0};
             for (int i = 0; i < (kRays + 11) / int(2 * cases.size()); ++i) {
                 // Aim at a vertex, at a point of the segment, or nearby.

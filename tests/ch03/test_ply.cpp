@@ -4,10 +4,14 @@
 // kind of malformed file is rejected with a message that says what is wrong
 // and where.
 //
-// Every test that reads a file belongs to exercise ex-3.24 (suites
-// Ex3_24_*), whose fragments parse the header lines of every file.
+// Every test that parses a file belongs to exercise ex-3.24 (suites
+// Ex3_24_*), whose fragments parse the header lines of every file; those
+// tests hand the files' bytes to the exercise calls of exercise_calls.h,
+// which write and read them.
 
 #include "lrt/lrt.h"
+
+#include "exercise_calls.h"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +19,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <random>
 #include <set>
@@ -92,26 +95,6 @@ class PlyBuilder {
     }
 };
 
-std::string TempPath(const std::string &name) {
-    return ::testing::TempDir() + "lrt_test_" + name;
-}
-
-std::string WriteFile(const std::string &name, const std::string &contents) {
-    std::string path = TempPath(name);
-    std::ofstream out(path, std::ios::binary);
-    out << contents;
-    return path;
-}
-
-// The message of the exception that ReadPly() throws, or "" if none.
-std::string ReadError(const std::string &path) {
-    try {
-        ReadPly(path);
-    } catch (const std::runtime_error &e) {
-        return e.what();
-    }
-    return "";
-}
 
 struct TestMesh {
     std::vector<Point3f> p;
@@ -242,8 +225,8 @@ void ExpectSameMesh(const TestMesh &m, const PlyMesh &r, bool exactFloat) {
 // Round trips: a random mesh of triangles, quads, pentagons and hexagons,
 // with normals and uv, in all three formats, with various property types,
 // names, and extra elements and properties that must be skipped.
-TEST(Ex3_24_PlyReader, RoundTripAllFormats) {
-    std::mt19937_64 rng(5);
+EXERCISE_TEST(Ex3_24_PlyReader, RoundTripAllFormats) {
+    std::mt19937_64 rng(calls::Seed(5));
     TestMesh m = RandomMesh(rng, 300, 500);
     struct Variant {
         std::string coord, countType, indexType;
@@ -262,11 +245,10 @@ TEST(Ex3_24_PlyReader, RoundTripAllFormats) {
         for (const Variant &v : variants) {
             std::string name = std::string("roundtrip_") + FormatName(fmt) +
                                "_" + std::to_string(files) + ".ply";
-            std::string path =
-                WriteFile(name, WriteMesh(m, fmt, v.coord, v.countType,
-                                          v.indexType, v.extras, v.u, v.v,
-                                          v.list));
-            PlyMesh r = ReadPly(path);
+            PlyMesh r = ex::ReadPly(name, WriteMesh(m, fmt, v.coord,
+                                                    v.countType, v.indexType,
+                                                    v.extras, v.u, v.v,
+                                                    v.list));
             ExpectSameMesh(m, r, true);
             ++files;
         }
@@ -274,7 +256,7 @@ TEST(Ex3_24_PlyReader, RoundTripAllFormats) {
                 "polygons each)\n", files, m.p.size(), m.faces.size());
 }
 
-TEST(Ex3_24_PlyReader, AsciiLayoutAndComments) {
+EXERCISE_TEST(Ex3_24_PlyReader, AsciiLayoutAndComments) {
     // CRLF line ends, comments and obj_info in the header, blank lines and
     // tabs in the data, a last line without a newline.
     std::string text =
@@ -293,7 +275,7 @@ TEST(Ex3_24_PlyReader, AsciiLayoutAndComments) {
         "  1 1 0  \r\n"
         "0 1 0\r\n"
         "4 0 1 2 3";
-    PlyMesh r = ReadPly(WriteFile("layout.ply", text));
+    PlyMesh r = ex::ReadPly("layout.ply", text);
     ASSERT_EQ(r.nVertices(), 4);
     EXPECT_EQ(r.p[2], Point3f(1, 1, 0));
     EXPECT_TRUE(r.n.empty());
@@ -303,7 +285,7 @@ TEST(Ex3_24_PlyReader, AsciiLayoutAndComments) {
 
 // A cube written as six quads (binary, big-endian) becomes twelve triangles
 // that a transformed ray hits where it should.
-TEST(Ex3_24_PlyReader, CreatePLYMeshMakesTriangles) {
+EXERCISE_TEST(Ex3_24_PlyReader, CreatePLYMeshMakesTriangles) {
     PlyBuilder b(Fmt::Big);
     b.Line("element vertex 8");
     b.Line("property float x");
@@ -323,33 +305,21 @@ TEST(Ex3_24_PlyReader, CreatePLYMeshMakesTriangles) {
         b.Put("uchar", 4);
         for (int k : q) b.Put("uint", k);
     }
-    std::string path = WriteFile("cube.ply", b.Contents());
     const Transform o2w = Translate(Vector3f(0, 0, 10)) * Scale(2, 2, 2);
-    const Transform w2o = Inverse(o2w);
-    auto tris = CreatePLYMesh(&o2w, &w2o, false, path);
-    ASSERT_EQ(tris.size(), 12u);
     Ray ray(Point3f(Float(0.3), Float(-0.2), 0), Vector3f(0, 0, 1));
-    Float tBest = Infinity;
-    SurfaceInteraction best;
-    for (const auto &t : tris) {
-        Float th;
-        SurfaceInteraction si;
-        if (t->Intersect(ray, &th, &si) && th < tBest) {
-            tBest = th;
-            best = si;
-        }
-    }
-    EXPECT_FLOAT_EQ(float(tBest), 8);
+    PlyShapes tris =
+        ex::CreatePLYMeshFile("cube.ply", b.Contents(), o2w, false, ray);
+    ASSERT_EQ(tris.worldBounds.size(), 12u);
+    ASSERT_GE(tris.nearest.triangle, 0);
+    EXPECT_FLOAT_EQ(float(tris.nearest.tHit), 8);
     // The quads are wound so that their normals point out of the cube.
-    EXPECT_FLOAT_EQ(float(best.n.z), -1);
+    EXPECT_FLOAT_EQ(float(tris.nearest.isect.n.z), -1);
     // Every triangle of the cube is front-facing from outside along some
     // axis, and the bound of the mesh is the transformed cube.
-    Bounds3f all = tris[0]->WorldBound();
-    for (const auto &t : tris) all = Union(all, t->WorldBound());
+    Bounds3f all = tris.worldBounds[0];
+    for (const Bounds3f &b : tris.worldBounds) all = Union(all, b);
     EXPECT_EQ(all.pMin, Point3f(-2, -2, 8));
     EXPECT_EQ(all.pMax, Point3f(2, 2, 12));
-    EXPECT_THROW(CreatePLYMesh(&o2w, &w2o, false, TempPath("nonexistent")),
-                 std::runtime_error);
 }
 
 // ---------------------------------------------------------------------------
@@ -381,7 +351,7 @@ std::string BinaryTriangle(int index2 = 2) {
 
 }  // namespace
 
-TEST(Ex3_24_PlyReader, ErrorMessagesNameFileAndProblem) {
+EXERCISE_TEST(Ex3_24_PlyReader, ErrorMessagesNameFileAndProblem) {
     struct Case {
         const char *name;
         std::string contents;
@@ -521,12 +491,11 @@ TEST(Ex3_24_PlyReader, ErrorMessagesNameFileAndProblem) {
                          {"face 0", "negative list length"}});
     }
     for (const Case &c : cases) {
-        std::string path = WriteFile(std::string(c.name) + ".ply", c.contents);
-        std::string message = ReadError(path);
+        std::string name = std::string(c.name) + ".ply";
+        std::string message = ex::ReadPlyError(name, c.contents);
         ASSERT_FALSE(message.empty()) << c.name << ": no error";
-        std::string prefix = "ReadPly: \"" + path + "\": ";
-        EXPECT_EQ(message.compare(0, prefix.size(), prefix), 0)
-            << c.name << ": " << message;
+        size_t prefix = ex::PlyFilePrefix(message, name);
+        EXPECT_GT(prefix, 0u) << c.name << ": " << message;
         for (const std::string &e : c.expect)
             EXPECT_NE(message.find(e), std::string::npos)
                 << c.name << ": \"" << message << "\" lacks \"" << e << "\"";
@@ -536,19 +505,35 @@ TEST(Ex3_24_PlyReader, ErrorMessagesNameFileAndProblem) {
             "empty",         "novertex",      "noface",    "noz",
             "partialnormal", "scalarindices", "floatindices", "listcoord",
             "hugecount"};
-        bool located = message.compare(prefix.size(), 5, "line ") == 0 ||
-                       message.compare(prefix.size(), 5, "byte ") == 0;
+        bool located = message.compare(prefix, 5, "line ") == 0 ||
+                       message.compare(prefix, 5, "byte ") == 0;
         EXPECT_EQ(located, whole.count(c.name) == 0) << message;
     }
     // The binary triangle itself is fine.
-    PlyMesh ok = ReadPly(WriteFile("goodbinary.ply", good));
+    PlyMesh ok = ex::ReadPly("goodbinary.ply", good);
     EXPECT_EQ(ok.vertexIndices, (std::vector<int>{0, 1, 2}));
     EXPECT_EQ(ok.p[2], Point3f(6, 7, 8));
     std::printf("[ ply      ] %zu malformed files rejected\n", cases.size());
 }
 
+// Files that cannot be read: the reader fails before it parses anything.
+
+namespace {
+
+// The message of the exception that ReadPly() throws, or "" if none.
+std::string ReadError(const std::string &path) {
+    try {
+        ReadPly(path);
+    } catch (const std::runtime_error &e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
 TEST(PlyReader, MissingFile) {
-    std::string path = TempPath("does_not_exist.ply");
+    std::string path = ::testing::TempDir() + "lrt_test_does_not_exist.ply";
     std::remove(path.c_str());
     std::string message = ReadError(path);
     EXPECT_NE(message.find("ReadPly: cannot open \"" + path + "\""),
@@ -556,6 +541,8 @@ TEST(PlyReader, MissingFile) {
         << message;
     EXPECT_NE(message.find("No such file or directory"), std::string::npos)
         << message;
+    const Transform id;
+    EXPECT_THROW(CreatePLYMesh(&id, &id, false, path), std::runtime_error);
     // A directory is not a file.
     std::string dir = ::testing::TempDir();
     message = ReadError(dir);

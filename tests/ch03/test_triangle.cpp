@@ -5,9 +5,13 @@
 //
 // Every test that intersects a ray with a triangle belongs to exercise
 // ex-3.23 (suites Ex3_23_*): the student edition leaves out the permutation
-// and shear of the intersection test, so without them no ray hits.
+// and shear of the intersection test, so without them no ray hits. Those
+// tests build their meshes and intersect them through the exercise calls of
+// exercise_calls.h.
 
 #include "lrt/lrt.h"
+
+#include "exercise_calls.h"
 
 #include <gtest/gtest.h>
 
@@ -91,23 +95,30 @@ const Transform *IdentityTransform() {
     return &identity;
 }
 
+// A mesh built here, for the tests that intersect no ray with it.
 std::vector<std::shared_ptr<Shape>> MakeTriangles(
     const std::vector<Point3f> &p, const std::vector<int> &indices,
-    const Transform *o2w = nullptr, const Transform *w2o = nullptr,
-    bool reverseOrientation = false, const std::vector<Normal3f> &n = {},
-    const std::vector<Vector3f> &s = {}, const std::vector<Point2f> &uv = {},
-    const std::vector<int> &faceIndices = {}) {
+    const Transform *o2w = nullptr, const Transform *w2o = nullptr) {
     if (!o2w) o2w = w2o = IdentityTransform();
-    return CreateTriangleMesh(
-        o2w, w2o, reverseOrientation, int(indices.size() / 3),
-        indices.data(), int(p.size()), p.data(), s.empty() ? nullptr : s.data(),
-        n.empty() ? nullptr : n.data(), uv.empty() ? nullptr : uv.data(),
-        faceIndices.empty() ? nullptr : faceIndices.data());
+    return CreateTriangleMesh(o2w, w2o, false, int(indices.size() / 3),
+                              indices.data(), int(p.size()), p.data(),
+                              nullptr, nullptr, nullptr);
 }
 
-std::shared_ptr<Shape> MakeTriangle(const Point3f &p0, const Point3f &p1,
-                                    const Point3f &p2) {
-    return MakeTriangles({p0, p1, p2}, {0, 1, 2})[0];
+// A mesh as the values of the exercise calls, which build it where they run;
+// the world-to-object transformation is the inverse of o2w.
+MeshSpec Spec(const std::vector<Point3f> &p, const std::vector<int> &indices,
+              const Transform &o2w = Transform(),
+              bool reverseOrientation = false,
+              const std::vector<Normal3f> &n = {},
+              const std::vector<Vector3f> &s = {},
+              const std::vector<Point2f> &uv = {},
+              const std::vector<int> &faceIndices = {}) {
+    return MeshSpec{p, indices, o2w, reverseOrientation, n, s, uv, faceIndices};
+}
+
+MeshSpec OneTriangle(const Point3f &p0, const Point3f &p1, const Point3f &p2) {
+    return Spec({p0, p1, p2}, {0, 1, 2});
 }
 
 // A closed triangle mesh with shared vertices, its triangles' world-space
@@ -255,9 +266,9 @@ const double kEps = std::numeric_limits<Float>::epsilon();
 // the geometric and shading normals and the shading frame, against the
 // double-precision oracle.
 
-TEST(Ex3_23_Triangle, AgreesWithDoublePrecisionOracle) {
-    constexpr int kRays = 100000;
-    Rng rng(0x7e1a5eed);
+EXERCISE_TEST(Ex3_23_Triangle, AgreesWithDoublePrecisionOracle) {
+    const int kRays = calls::Cases(100000, 25000);
+    Rng rng(calls::Seed(0x7e1a5eed));
     int hits = 0, oracleHits = 0, disagreements = 0, badDisagreements = 0;
     int randomDisagreements = 0;  // among the rays not aimed near an edge
     int grazing = 0;
@@ -301,8 +312,8 @@ TEST(Ex3_23_Triangle, AgreesWithDoublePrecisionOracle) {
                 ns.push_back(Normal3f(Float(nk.x), Float(nk.y), Float(nk.z)));
                 if (i % 6 == 0) ss.push_back(ToV(rng.OnSphere()));
             }
-        auto tri = MakeTriangles({p[0], p[1], p[2]}, {0, 1, 2}, nullptr,
-                                 nullptr, false, ns, ss, uv)[0];
+        MeshSpec tri = Spec({p[0], p[1], p[2]}, {0, 1, 2}, Transform(), false,
+                            ns, ss, uv);
 
         // A ray toward a point with barycentric coordinates in roughly
         // [-0.25, 1.25], from a random origin or, for one ray in ten, from
@@ -354,10 +365,11 @@ TEST(Ex3_23_Triangle, AgreesWithDoublePrecisionOracle) {
         // rays at a grazing angle theta to the plane, for any algorithm
         // that computes in Float.
         double cosT = std::abs(DotD(NormD(ToD(df)), nUnit));
-        Float tHit = -1;
-        SurfaceInteraction isect;
-        bool hit = tri->Intersect(ray, &tHit, &isect);
-        EXPECT_EQ(hit, tri->IntersectP(ray)) << "ray " << i;
+        TriangleHit h = ex::IntersectTriangleOf(tri, 0, ray, Float(-1));
+        bool hit = h.hit;
+        Float tHit = h.tHit;
+        SurfaceInteraction isect = ex::ToSurfaceInteraction(h.isect);
+        EXPECT_EQ(hit, h.hitP) << "ray " << i;
         hits += hit;
         oracleHits += oh.hit;
         if (hit != oh.hit) {
@@ -494,9 +506,9 @@ TEST(Ex3_23_Triangle, AgreesWithDoublePrecisionOracle) {
 // With degenerate (u,v) the partial derivatives form an orthonormal frame
 // perpendicular to the normal, and dn/du, dn/dv are the normal's rates of
 // change along those directions.
-TEST(Ex3_23_Triangle, DegenerateUVGivesFrameAroundNormal) {
+EXERCISE_TEST(Ex3_23_Triangle, DegenerateUVGivesFrameAroundNormal) {
     constexpr int kRays = 2000;
-    Rng rng(42);
+    Rng rng(calls::Seed(42));
     int hits = 0;
     for (int i = 0; i < kRays; ++i) {
         Point3f p[3];
@@ -512,14 +524,14 @@ TEST(Ex3_23_Triangle, DegenerateUVGivesFrameAroundNormal) {
             D3 nk = NormD(Add(n, Mul(0.4, rng.InBall())));
             ns.push_back(Normal3f(Float(nk.x), Float(nk.y), Float(nk.z)));
         }
-        auto tri = MakeTriangles({p[0], p[1], p[2]}, {0, 1, 2}, nullptr,
-                                 nullptr, false, ns, {}, uv)[0];
+        MeshSpec tri = Spec({p[0], p[1], p[2]}, {0, 1, 2}, Transform(), false,
+                            ns, {}, uv);
         D3 target = Mul(1.0 / 3, Add(pd[0], Add(pd[1], pd[2])));
         Point3f o = ToP(Add(target, Mul(2, rng.OnSphere())));
         Ray ray(o, ToV(Sub(target, ToD(o))));
-        Float t;
-        SurfaceInteraction si;
-        if (!tri->Intersect(ray, &t, &si)) continue;
+        TriangleHit h = ex::IntersectTriangleOf(tri, 0, ray, Float(0));
+        if (!h.hit) continue;
+        SurfaceInteraction si = ex::ToSurfaceInteraction(h.isect);
         ++hits;
         D3 u = ToD(si.dpdu), v = ToD(si.dpdv);
         EXPECT_NEAR(LenD(u), 1, 1e-5);
@@ -543,8 +555,8 @@ TEST(Ex3_23_Triangle, DegenerateUVGivesFrameAroundNormal) {
 // hits as the untransformed mesh seen through the inverse transformation,
 // and its normals are the transformed object-space normals, negated with
 // reverseOrientation, for mirroring transformations too.
-TEST(Ex3_23_Triangle, TransformedMeshesMatchObjectSpace) {
-    constexpr int kRaysPerCase = 5000;
+EXERCISE_TEST(Ex3_23_Triangle, TransformedMeshesMatchObjectSpace) {
+    const int kRaysPerCase = calls::Cases(5000, 1000);
     std::vector<Transform> transforms = {
         Rotate(37, Vector3f(1, 2, 3)) * Scale(2, Float(0.5), 3),
         Scale(-1, 1, 1),
@@ -554,7 +566,7 @@ TEST(Ex3_23_Triangle, TransformedMeshesMatchObjectSpace) {
     ClosedMesh obj = IcoSphere(1, 1, Point3f(0, 0, 0));
     std::vector<Normal3f> vn;
     for (const Point3f &q : obj.p) vn.push_back(Normal3f(Vector3f(q)));
-    Rng rng(7);
+    Rng rng(calls::Seed(7));
     int compared = 0, edgeSkips = 0;
     for (size_t ti = 0; ti < transforms.size(); ++ti) {
         const Transform o2w = transforms[ti], w2o = Inverse(o2w);
@@ -566,12 +578,12 @@ TEST(Ex3_23_Triangle, TransformedMeshesMatchObjectSpace) {
         }
         for (int ro = 0; ro <= 1; ++ro)
             for (int withNormals = 0; withNormals <= 1; ++withNormals) {
-                auto world = MakeTriangles(
-                    obj.p, obj.indices, &o2w, &w2o, ro == 1,
-                    withNormals ? vn : std::vector<Normal3f>{});
-                auto object = MakeTriangles(
-                    obj.p, obj.indices, nullptr, nullptr, false,
-                    withNormals ? vn : std::vector<Normal3f>{});
+                calls::Handle world = ex::MakeMesh(Spec(
+                    obj.p, obj.indices, o2w, ro == 1,
+                    withNormals ? vn : std::vector<Normal3f>{}));
+                calls::Handle object = ex::MakeMesh(Spec(
+                    obj.p, obj.indices, Transform(), false,
+                    withNormals ? vn : std::vector<Normal3f>{}));
                 for (int i = 0; i < kRaysPerCase; ++i) {
                     Point3f oo = ToP(Mul(3, rng.OnSphere()));
                     Point3f target = ToP(Mul(0.8, rng.InBall()));
@@ -579,23 +591,12 @@ TEST(Ex3_23_Triangle, TransformedMeshesMatchObjectSpace) {
                     Ray worldRay = o2w(objRay);
                     Ray backRay = w2o(worldRay);
                     // Nearest hits in both.
-                    Float tw = Infinity, to = Infinity;
-                    SurfaceInteraction sw, so;
-                    int iw = -1, io = -1;
-                    for (size_t k = 0; k < world.size(); ++k) {
-                        Float t;
-                        SurfaceInteraction s;
-                        if (world[k]->Intersect(worldRay, &t, &s) && t < tw) {
-                            tw = t;
-                            sw = s;
-                            iw = int(k);
-                        }
-                        if (object[k]->Intersect(backRay, &t, &s) && t < to) {
-                            to = t;
-                            so = s;
-                            io = int(k);
-                        }
-                    }
+                    MeshHit hw = ex::IntersectMesh(world, worldRay);
+                    MeshHit ho = ex::IntersectMesh(object, backRay);
+                    int iw = hw.triangle, io = ho.triangle;
+                    Float tw = hw.tHit, to = ho.tHit;
+                    SurfaceInteraction sw = ex::ToSurfaceInteraction(hw.isect);
+                    SurfaceInteraction so = ex::ToSurfaceInteraction(ho.isect);
                     ASSERT_TRUE(iw >= 0 && io >= 0) << "case " << ti;
                     if (iw != io) {
                         ++edgeSkips;  // nearly on an edge: both are right
@@ -664,8 +665,8 @@ TEST(Triangle, Bounds) {
 
 // Triangles of zero area, exactly degenerate in floating point, are never
 // hit, whatever the ray; neither Intersect() nor IntersectP() crashes.
-TEST(Ex3_23_Triangle, DegenerateTrianglesNeverHit) {
-    constexpr int kRays = 100000;
+EXERCISE_TEST(Ex3_23_Triangle, DegenerateTrianglesNeverHit) {
+    const int kRays = calls::Cases(100000, 24000);
     std::vector<std::array<Point3f, 3>> cases = {
         {Point3f(0, 0, 0), Point3f(1, 2, 3), Point3f(2, 4, 6)},  // collinear
         {Point3f(-1, 0, 0), Point3f(1, 0, 0), Point3f(3, 0, 0)},
@@ -677,15 +678,18 @@ TEST(Ex3_23_Triangle, DegenerateTrianglesNeverHit) {
          Point3f(Float(3.5), Float(1.75), 4)}};
     const Transform shift = Translate(Vector3f(4, -2, 8));
     const Transform unshift = Inverse(shift);
-    Rng rng(99);
+    Rng rng(calls::Seed(99));
     int tested = 0;
     for (const auto &c : cases)
         for (int moved = 0; moved <= 1; ++moved) {
-            auto tri = MakeTriangles({c[0], c[1], c[2]}, {0, 1, 2},
-                                     moved ? &shift : nullptr,
-                                     moved ? &unshift : nullptr)[0];
-            Bounds3f b = tri->WorldBound();
+            // The bounds (no code of the exercise) are checked here.
+            Bounds3f b = MakeTriangles({c[0], c[1], c[2]}, {0, 1, 2},
+                                       moved ? &shift : nullptr,
+                                       moved ? &unshift : nullptr)[0]
+                             ->WorldBound();
             EXPECT_FALSE(b.pMin.HasNaNs() || b.pMax.HasNaNs());
+            calls::Handle tri = ex::MakeMesh(Spec(
+                {c[0], c[1], c[2]}, {0, 1, 2}, moved ? shift : Transform()));
             D3 off = moved ? D3{4, -2, 8} : D3{0, 0, 0};
             for (int i = 0; i < (kRays + 11) / int(2 * cases.size()); ++i) {
                 // Aim at a vertex, at a point of the segment, or nearby.
@@ -701,10 +705,9 @@ TEST(Ex3_23_Triangle, DegenerateTrianglesNeverHit) {
                 Point3f o = ToP(Add(target, Mul(rng.Uniform(0.01, 10),
                                                 rng.OnSphere())));
                 Ray ray(o, ToV(Sub(target, ToD(o))));
-                Float t;
-                SurfaceInteraction si;
-                EXPECT_FALSE(tri->Intersect(ray, &t, &si));
-                EXPECT_FALSE(tri->IntersectP(ray));
+                TriangleHit h = ex::IntersectTriangle(tri, 0, ray, Float(0));
+                EXPECT_FALSE(h.hit);
+                EXPECT_FALSE(h.hitP);
                 ++tested;
             }
         }
@@ -712,9 +715,9 @@ TEST(Ex3_23_Triangle, DegenerateTrianglesNeverHit) {
 }
 
 // Rays with NaNs, infinities or a zero direction never hit and never crash.
-TEST(Ex3_23_Triangle, InvalidRaysNeverHit) {
-    auto tri = MakeTriangle(Point3f(-1, -1, 2), Point3f(1, -1, 2),
-                            Point3f(0, 1, 2));
+EXERCISE_TEST(Ex3_23_Triangle, InvalidRaysNeverHit) {
+    calls::Handle tri = ex::MakeMesh(OneTriangle(
+        Point3f(-1, -1, 2), Point3f(1, -1, 2), Point3f(0, 1, 2)));
     const Float nan = std::numeric_limits<Float>::quiet_NaN();
     const Float inf = Infinity;
     std::vector<Ray> rays = {
@@ -734,18 +737,16 @@ TEST(Ex3_23_Triangle, InvalidRaysNeverHit) {
         Ray(Point3f(0, 0, 0), Vector3f(0, 0, 1), 0),
         Ray(Point3f(0, 0, 0), Vector3f(0, 0, 1), -1)};
     for (size_t i = 0; i < rays.size(); ++i) {
-        Float t = -7;
-        SurfaceInteraction si;
-        EXPECT_FALSE(tri->Intersect(rays[i], &t, &si)) << "ray " << i;
-        EXPECT_FALSE(tri->IntersectP(rays[i])) << "ray " << i;
-        EXPECT_EQ(t, -7) << "tHit must be left alone on a miss";
+        TriangleHit h = ex::IntersectTriangle(tri, 0, rays[i], Float(-7));
+        EXPECT_FALSE(h.hit) << "ray " << i;
+        EXPECT_FALSE(h.hitP) << "ray " << i;
+        EXPECT_EQ(h.tHit, -7) << "tHit must be left alone on a miss";
     }
     // The same triangle is hit by the valid ray, exactly at t = 2.
-    Float t;
-    SurfaceInteraction si;
-    ASSERT_TRUE(tri->Intersect(Ray(Point3f(0, 0, 0), Vector3f(0, 0, 1)), &t,
-                               &si));
-    EXPECT_EQ(t, 2);
+    TriangleHit h = ex::IntersectTriangle(
+        tri, 0, Ray(Point3f(0, 0, 0), Vector3f(0, 0, 1)), Float(-7));
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.tHit, 2);
 }
 
 // A needle-shaped triangle for which two of the float edge functions are
@@ -753,7 +754,7 @@ TEST(Ex3_23_Triangle, InvalidRaysNeverHit) {
 // a line through the ray, and its tip points at the ray from 1.4 units
 // away. Without the double-precision fallback the float test reports a hit
 // at t = 1.
-TEST(Ex3_23_Triangle, DoublePrecisionFallbackForZeroEdgeFunctions) {
+EXERCISE_TEST(Ex3_23_Triangle, DoublePrecisionFallbackForZeroEdgeFunctions) {
     const Float a = Float(1) + std::ldexp(Float(1), -12);
     const Float b = Float(1) + std::ldexp(Float(1), -11);
     Point3f p0(Float(3.0020699501037598), Float(3.002802848815918), 1);
@@ -769,32 +770,32 @@ TEST(Ex3_23_Triangle, DoublePrecisionFallbackForZeroEdgeFunctions) {
         EXPECT_EQ(p1.x * p2.y - p1.y * p2.x, 0);
         EXPECT_EQ(p2.x * p0.y - p2.y * p0.x, 0);
     }
-    auto tri = MakeTriangle(p0, p1, p2);
-    Float t;
-    SurfaceInteraction si;
-    EXPECT_FALSE(tri->Intersect(ray, &t, &si));
-    EXPECT_FALSE(tri->IntersectP(ray));
+    TriangleHit h = ex::IntersectTriangleOf(OneTriangle(p0, p1, p2), 0, ray,
+                                            Float(0));
+    EXPECT_FALSE(h.hit);
+    EXPECT_FALSE(h.hitP);
 }
 
 // Rays exactly through a shared edge or vertex hit every triangle that has
 // it (edges are inclusive), and report the same t.
-TEST(Ex3_23_Triangle, ExactEdgeAndVertexHitsAreInclusive) {
+EXERCISE_TEST(Ex3_23_Triangle, ExactEdgeAndVertexHitsAreInclusive) {
     std::vector<Point3f> p = {Point3f(0, 0, 5), Point3f(2, 0, 5),
                               Point3f(0, 2, 5), Point3f(-2, 0, 5),
                               Point3f(0, -2, 5)};
-    auto tris = MakeTriangles(p, {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1});
+    calls::Handle tris =
+        ex::MakeMesh(Spec(p, {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1}));
     // Through the shared vertex.
     Ray toVertex(Point3f(0, 0, 0), Vector3f(0, 0, 1));
-    for (const auto &t : tris) {
-        Float th;
-        SurfaceInteraction si;
-        ASSERT_TRUE(t->Intersect(toVertex, &th, &si));
-        EXPECT_EQ(th, 5);
+    for (int k = 0; k < 4; ++k) {
+        TriangleHit h = ex::IntersectTriangle(tris, k, toVertex, Float(0));
+        ASSERT_TRUE(h.hit);
+        EXPECT_EQ(h.tHit, 5);
     }
     // Through the middle of the edge shared by the first two triangles.
     Ray toEdge(Point3f(-1, 3, 0), Vector3f(1, -2, 5));
     int n = 0;
-    for (const auto &t : tris) n += t->IntersectP(toEdge);
+    for (int k = 0; k < 4; ++k)
+        n += ex::IntersectTriangle(tris, k, toEdge, Float(0)).hitP;
     EXPECT_EQ(n, 2);
 }
 
@@ -843,102 +844,120 @@ TEST(Triangle, MeshArgumentsAreChecked) {
                     .empty());
 }
 
-TEST(Ex3_23_Triangle, FaceIndicesAndShapePointer) {
+EXERCISE_TEST(Ex3_23_Triangle, FaceIndicesAndShapePointer) {
     std::vector<Point3f> p = {Point3f(0, 0, 1), Point3f(1, 0, 1),
                               Point3f(0, 1, 1), Point3f(1, 1, 1)};
-    auto tris = MakeTriangles(p, {0, 1, 2, 2, 1, 3}, nullptr, nullptr, false,
-                              {}, {}, {}, {17, 42});
-    ASSERT_EQ(tris.size(), 2u);
-    Float t;
-    SurfaceInteraction si;
-    ASSERT_TRUE(tris[1]->Intersect(
-        Ray(Point3f(Float(0.75), Float(0.75), 0), Vector3f(0, 0, 1)), &t,
-        &si));
-    EXPECT_EQ(si.faceIndex, 42);
-    EXPECT_EQ(si.shape, tris[1].get());
-    EXPECT_EQ(t, 1);
-    EXPECT_EQ(si.wo, Vector3f(0, 0, -1));
+    MeshSpec tris = Spec(p, {0, 1, 2, 2, 1, 3}, Transform(), false, {}, {},
+                         {}, {17, 42});
+    TriangleHit h = ex::IntersectTriangleOf(
+        tris, 1, Ray(Point3f(Float(0.75), Float(0.75), 0), Vector3f(0, 0, 1)),
+        Float(0));
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.isect.faceIndex, 42);
+    // si.shape points to the second triangle.
+    EXPECT_EQ(h.isect.shapeIndex, 1);
+    EXPECT_EQ(h.tHit, 1);
+    EXPECT_EQ(h.isect.wo, Vector3f(0, 0, -1));
 }
 
 // Rays spawned from a hit point with OffsetRayOrigin() in random directions
 // leaving the surface, to either side, never hit the same triangle again;
 // nor, for outward directions, any triangle of a convex closed mesh. At
 // scales from 1e-3 to 1e4 and at distances from the origin up to 100 times
-// the triangle's size.
-TEST(Ex3_23_Triangle, SpawnedRaysDoNotReintersect) {
-    constexpr int kRaysPerScale = 20000;
-    Rng rng(2024);
-    int spawned = 0, selfHits = 0;
+// the triangle's size. (OffsetRayOrigin() is exercise ex-3.22's code; it
+// runs here, in the test, as the book has it.)
+//
+// The spawned rays start at the hit points that the calls return, so the
+// test first finds every hit and then traces every spawned ray: the
+// grader's judge, which collects a test's calls and has them answered
+// together (tests/calls/judge.cpp), then needs one more round for the
+// spawned rays, not one per hit whose answer differs from the book's.
+EXERCISE_TEST(Ex3_23_Triangle, SpawnedRaysDoNotReintersect) {
+    const int kRaysPerScale = calls::Cases(20000, 3000);
+    const int kRaysPerMesh = calls::Cases(500, 250);
+    Rng rng(calls::Seed(2024));
+    // A hit on a triangle, and the directions of the rays to spawn from it,
+    // drawn whether or not the triangle is hit.
+    struct Spawn {
+        double scale;
+        Point3f p[3];
+        Vector3f w[2];
+        Point3f hit;
+        Vector3f pError;
+        Normal3f n;
+    };
+    std::vector<Spawn> spawns;
     for (int e = -3; e <= 4; ++e) {
         double s = std::pow(10.0, e);
         for (int i = 0; i < kRaysPerScale; ++i) {
             D3 center = Mul(s * std::pow(10.0, rng.Uniform(0, 2)),
                             rng.InBall());
-            Point3f p[3];
-            for (Point3f &q : p) q = ToP(Add(center, Mul(s, rng.InBall())));
-            auto tri = MakeTriangle(p[0], p[1], p[2]);
-            D3 pd[3] = {ToD(p[0]), ToD(p[1]), ToD(p[2])};
+            Spawn sp;
+            sp.scale = s;
+            for (Point3f &q : sp.p) q = ToP(Add(center, Mul(s, rng.InBall())));
+            D3 pd[3] = {ToD(sp.p[0]), ToD(sp.p[1]), ToD(sp.p[2])};
             double w0 = rng.Uniform(), w1 = rng.Uniform(), w2 = rng.Uniform();
             double sum = w0 + w1 + w2;
             D3 target = Add(Mul(w0 / sum, pd[0]),
                             Add(Mul(w1 / sum, pd[1]), Mul(w2 / sum, pd[2])));
             Point3f o = ToP(Add(target, Mul(3 * s, rng.OnSphere())));
             Ray ray(o, ToV(Sub(target, ToD(o))));
-            Float t;
-            SurfaceInteraction si;
-            if (!tri->Intersect(ray, &t, &si)) continue;
-            for (int k = 0; k < 2; ++k) {
-                Vector3f w = ToV(rng.OnSphere());
-                if (Dot(w, si.n) == 0) continue;
-                Point3f po = OffsetRayOrigin(si.p, si.pError, si.n, w);
-                Ray r(po, w);
-                ++spawned;
-                if (tri->IntersectP(r)) {
-                    ++selfHits;
-                    if (selfHits < 5)
-                        ADD_FAILURE() << "scale " << s << " ray " << i
-                                      << " reintersects";
-                }
-            }
+            for (Vector3f &w : sp.w) w = ToV(rng.OnSphere());
+            TriangleHit h = ex::IntersectTriangleOf(
+                OneTriangle(sp.p[0], sp.p[1], sp.p[2]), 0, ray, Float(0));
+            if (!h.hit) continue;
+            sp.hit = h.isect.p;
+            sp.pError = h.isect.pError;
+            sp.n = h.isect.n;
+            spawns.push_back(sp);
         }
     }
+    // The same for convex closed meshes, with one outward direction per hit.
+    std::vector<calls::Handle> meshes;
+    std::vector<std::pair<size_t, Ray>> outward;  // mesh, spawned ray
+    for (int e = -3; e <= 4; e += 1) {
+        Float r = Float(std::pow(10.0, e));
+        ClosedMesh m =
+            IcoSphere(2, r, Point3f(Float(0.3) * r, -2 * r, Float(0.7) * r));
+        meshes.push_back(ex::MakeMesh(Spec(m.p, m.indices)));
+        for (int i = 0; i < kRaysPerMesh; ++i) {
+            D3 dir = rng.OnSphere();
+            Point3f o = ToP(Add(ToD(m.center), Mul(3 * double(r), dir)));
+            Ray ray(o, ToV(Sub(ToD(m.center), ToD(o))) +
+                           ToV(Mul(0.5 * double(r), rng.InBall())));
+            Vector3f w = ToV(rng.OnSphere());
+            MeshHit nearest = ex::IntersectMesh(meshes.back(), ray);
+            if (nearest.triangle < 0) continue;
+            const SurfaceHit &best = nearest.isect;
+            if (Dot(w, best.n) < 0) w = -w;
+            outward.emplace_back(
+                meshes.size() - 1,
+                Ray(OffsetRayOrigin(best.p, best.pError, best.n, w), w));
+        }
+    }
+
+    int spawned = 0, selfHits = 0;
+    for (const Spawn &sp : spawns)
+        for (const Vector3f &w : sp.w) {
+            if (Dot(w, sp.n) == 0) continue;
+            Ray r(OffsetRayOrigin(sp.hit, sp.pError, sp.n, w), w);
+            ++spawned;
+            TriangleHit again = ex::IntersectTriangleOf(
+                OneTriangle(sp.p[0], sp.p[1], sp.p[2]), 0, r, Float(0));
+            if (again.hitP && ++selfHits < 5)
+                ADD_FAILURE() << "scale " << sp.scale << ": the ray " << r
+                              << " spawned from " << sp.hit << " reintersects";
+        }
     std::printf("[ spawn    ] %d spawned rays, %d self-intersections\n",
                 spawned, selfHits);
     EXPECT_EQ(selfHits, 0);
     EXPECT_GT(spawned, 8 * kRaysPerScale);
 
-    // Outward rays from a convex closed mesh hit none of its triangles.
-    int meshSpawned = 0, meshHits = 0;
-    for (int e = -3; e <= 4; e += 1) {
-        Float r = Float(std::pow(10.0, e));
-        ClosedMesh m =
-            IcoSphere(2, r, Point3f(Float(0.3) * r, -2 * r, Float(0.7) * r));
-        auto tris = MakeTriangles(m.p, m.indices);
-        for (int i = 0; i < 500; ++i) {
-            D3 dir = rng.OnSphere();
-            Point3f o = ToP(Add(ToD(m.center), Mul(3 * double(r), dir)));
-            Ray ray(o, ToV(Sub(ToD(m.center), ToD(o))) +
-                           ToV(Mul(0.5 * double(r), rng.InBall())));
-            Float tBest = Infinity;
-            SurfaceInteraction best;
-            for (const auto &t : tris) {
-                Float th;
-                SurfaceInteraction si;
-                if (t->Intersect(ray, &th, &si) && th < tBest) {
-                    tBest = th;
-                    best = si;
-                }
-            }
-            if (tBest == Infinity) continue;
-            Vector3f w = ToV(rng.OnSphere());
-            if (Dot(w, best.n) < 0) w = -w;
-            Ray out(OffsetRayOrigin(best.p, best.pError, best.n, w), w);
-            ++meshSpawned;
-            for (const auto &t : tris) meshHits += t->IntersectP(out);
-        }
-    }
-    std::printf("[ spawn    ] %d outward rays from closed meshes, %d hits\n",
-                meshSpawned, meshHits);
+    int meshHits = 0;
+    for (const auto &out : outward)
+        meshHits += ex::HitsMesh(meshes[out.first], out.second);
+    std::printf("[ spawn    ] %zu outward rays from closed meshes, %d hits\n",
+                outward.size(), meshHits);
     EXPECT_EQ(meshHits, 0);
 }
 
@@ -1013,8 +1032,9 @@ bool MollerTrumboreFloat(const Point3f &p0, const Point3f &p1,
 
 }  // namespace
 
-TEST(Ex3_23_TriangleWatertight, RaysAtSharedEdgesAndVertices) {
-    constexpr int kRaysPerCase = 70000;  // 16 cases: 1,120,000 rays
+EXERCISE_TEST(Ex3_23_TriangleWatertight, RaysAtSharedEdgesAndVertices) {
+    // 16 cases: 1,120,000 rays in `make test`, 80,000 when graded.
+    const int kRaysPerCase = calls::Cases(70000, 5000);
     struct Placement {
         Float size;
         Point3f center;
@@ -1024,13 +1044,13 @@ TEST(Ex3_23_TriangleWatertight, RaysAtSharedEdgesAndVertices) {
         {Float(1e-3), Point3f(Float(3.7e-4), Float(-2.1e-3), Float(5e-4))},
         {Float(1e3), Point3f(1234.5f, -987.25f, 450)},
         {Float(1.7), Point3f(Float(100.3), Float(-20.7), Float(5.1))}};
-    Rng rng(123456789);
+    Rng rng(calls::Seed(123456789));
     long long rays = 0, failures = 0, multiple = 0, controlFailures = 0;
     for (int kind = 0; kind < 2; ++kind)
         for (const Placement &pl : placements) {
             ClosedMesh m = kind == 0 ? IcoSphere(3, pl.size, pl.center)
                                      : SubdividedCube(4, pl.size, pl.center);
-            auto tris = MakeTriangles(m.p, m.indices);
+            calls::Handle tris = ex::MakeMesh(Spec(m.p, m.indices));
             Adjacency adj = Adjacent(m);
             for (int inside = 0; inside <= 1; ++inside)
                 for (int i = 0; i < kRaysPerCase; ++i) {
@@ -1084,11 +1104,13 @@ TEST(Ex3_23_TriangleWatertight, RaysAtSharedEdgesAndVertices) {
                     if (i % 3 == 0) d = Normalize(d);
                     Ray ray(o, d);
                     int hitCount = 0, controlHits = 0;
-                    for (int t : cand) {
-                        Float th;
-                        SurfaceInteraction si;
-                        bool h = tris[t]->Intersect(ray, &th, &si);
-                        EXPECT_EQ(h, tris[t]->IntersectP(ray));
+                    std::vector<TriangleVerdict> verdicts =
+                        ex::IntersectTriangles(tris, cand, ray);
+                    ASSERT_EQ(verdicts.size(), cand.size());
+                    for (size_t k = 0; k < cand.size(); ++k) {
+                        int t = cand[k];
+                        bool h = verdicts[k].hit;
+                        EXPECT_EQ(h, verdicts[k].hitP);
                         hitCount += h;
                         const int *v = &m.indices[3 * t];
                         controlHits += MollerTrumboreFloat(
@@ -1113,14 +1135,14 @@ TEST(Ex3_23_TriangleWatertight, RaysAtSharedEdgesAndVertices) {
     std::printf("[ watertight] control, float Moller-Trumbore on the same "
                 "rays: %lld passed between triangles\n", controlFailures);
     EXPECT_EQ(failures, 0);
-    EXPECT_GE(rays, 1000000);
+    EXPECT_EQ(rays, 16LL * kRaysPerCase);
 }
 
 // Rays from random points inside closed meshes in random directions always
 // hit the mesh (all triangles tested).
-TEST(Ex3_23_TriangleWatertight, RandomRaysFromInsideAlwaysHit) {
-    constexpr int kRaysPerCase = 10000;
-    Rng rng(31337);
+EXERCISE_TEST(Ex3_23_TriangleWatertight, RandomRaysFromInsideAlwaysHit) {
+    const int kRaysPerCase = calls::Cases(10000, 2000);
+    Rng rng(calls::Seed(31337));
     long long rays = 0, misses = 0;
     for (int kind = 0; kind < 2; ++kind)
         for (int e = -3; e <= 3; e += 2) {
@@ -1128,17 +1150,12 @@ TEST(Ex3_23_TriangleWatertight, RandomRaysFromInsideAlwaysHit) {
             Point3f c(Float(0.37) * size, 50 * size, -Float(1.3) * size);
             ClosedMesh m = kind == 0 ? IcoSphere(2, size, c)
                                      : SubdividedCube(3, size, c);
-            auto tris = MakeTriangles(m.p, m.indices);
+            calls::Handle tris = ex::MakeMesh(Spec(m.p, m.indices));
             for (int i = 0; i < kRaysPerCase; ++i) {
                 Point3f o = ToP(Add(ToD(c), Mul(0.9 * double(size),
                                                 rng.InBall())));
                 Ray ray(o, ToV(rng.OnSphere()));
-                bool hit = false;
-                for (const auto &t : tris)
-                    if (t->IntersectP(ray)) {
-                        hit = true;
-                        break;
-                    }
+                bool hit = ex::HitsMesh(tris, ray);
                 ++rays;
                 misses += !hit;
             }

@@ -276,8 +276,10 @@ EXERCISE_TEST(Ex6_12_SAHHidden, DecisionsOnOtherScenes) {
         total.leaves += c.leaves;
         if (::testing::Test::HasFailure()) return;
     }
-    EXPECT_GT(total.decisions, kScenes * 25 / 2);
-    EXPECT_GT(total.leaves, kScenes / 30);
+    // (Over 30 gradings, 15.0 to 16.7 decisions and 0.04 to 0.12 leaves per
+    // scene.)
+    EXPECT_GT(total.decisions, kScenes * 10);
+    EXPECT_GT(total.leaves, kScenes / 100);
 }
 
 // SAH trees over triangles: a closed mesh of 8192 triangles and soups of
@@ -298,7 +300,7 @@ EXERCISE_TEST(Ex6_12_SAHHidden, TriangleMeshesMatchBruteForce) {
                                      "SAH tree of triangles");
         }
     }
-    EXPECT_GT(hits, rays * 4 / 3);
+    EXPECT_GT(hits, rays * 4 / 3);  // 2.1 to 3.2 per ray over 30 gradings
 }
 
 // ---------------------------------------------------------------------------
@@ -449,7 +451,7 @@ EXERCISE_TEST(Ex6_13_MortonHidden, HLBVHMatchesBruteForce) {
                                      "FastBVHAccel HLBVH");
         }
     }
-    EXPECT_GT(hits, rays * 5);
+    EXPECT_GT(hits, rays * 3);  // 4.5 to 7.6 per ray over 30 gradings
 }
 
 // ---------------------------------------------------------------------------
@@ -642,5 +644,5 @@ EXERCISE_TEST(Ex6_14_TraversalHidden, TrianglesMatchBruteForce) {
                 hits += ExpectBruteForce(bvh, scene.prims, rng, rays,
                                          "BVHAccel");
             }
-    EXPECT_GT(hits, rays * 20 / 3);
+    EXPECT_GT(hits, rays * 4);  // 6.0 to 9.5 per ray over 30 gradings
 }

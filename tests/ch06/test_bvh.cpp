@@ -1155,6 +1155,73 @@ TEST(BVHHelpers, StatsSAHCost) {
     EXPECT_NEAR(fast.Stats().sahCost, 1 + 2 * 24.0 / 56.0, 1e-6);
 }
 
+// The exercises' tests walk the nodes that the worker answers with, which a
+// wrong or hostile worker may fill with anything: a node array that is not a
+// tree as BVHAccel lays it out is refused before any check walks it, and so
+// is a primitive's index outside the scene (exercise_calls.h).
+TEST(ExerciseCalls, AnswersThatAreNotATreeAreRefused) {
+    Scene scene;
+    for (int i = 0; i < 8; ++i)
+        scene.AddBox(Bounds3f(Point3f(Float(2 * i), 0, 0),
+                              Point3f(Float(2 * i + 1), 1, 1)));
+    BVHAccel bvh(scene.prims, 1, SplitMethod::Middle);
+    const std::vector<LinearBVHNode> tree = bvh.Nodes();
+    ASSERT_EQ(tree.size(), 15u);
+    EXPECT_NO_THROW(ex::CheckIsTree(tree, 8));
+    EXPECT_NO_THROW(ex::CheckIsTree({}, 0));
+    auto refused = [&](const char *what,
+                       std::function<void(std::vector<LinearBVHNode> &)> f,
+                       size_t nPrimitives = 8) {
+        std::vector<LinearBVHNode> nodes = tree;
+        f(nodes);
+        EXPECT_THROW(ex::CheckIsTree(nodes, nPrimitives), std::runtime_error)
+            << what;
+    };
+    int leaf = 0;
+    while (tree[leaf].nPrimitives == 0) ++leaf;
+    refused("second child past the end",
+            [](auto &n) { n[0].secondChildOffset = int(n.size()); });
+    refused("second child before the node",
+            [](auto &n) { n[1].secondChildOffset = -7; });
+    refused("both children the same",
+            [](auto &n) { n[0].secondChildOffset = 1; });
+    refused("a node reached twice", [](auto &n) {
+        n[1].secondChildOffset = n[0].secondChildOffset;
+    });
+    refused("a node reached from nowhere",
+            [&](auto &n) { n.push_back(tree[leaf]); });
+    refused("an interior node as the last",
+            [](auto &n) { n.back().nPrimitives = 0; });
+    refused("a split along no axis", [](auto &n) { n[0].axis = 3; });
+    refused("a leaf past the primitives", [&](auto &n) {
+        n[leaf].primitivesOffset = 7;
+        n[leaf].nPrimitives = 2;
+    });
+    refused("a leaf before the primitives",
+            [&](auto &n) { n[leaf].primitivesOffset = -1; });
+    refused("leaves with no primitives", [](auto &) {}, 0);
+    // A chain of interior nodes, each with a leaf as its first child: as
+    // deep as BVHAccel's traversal stack allows, and one deeper.
+    for (int depth : {maxBVHDepth, maxBVHDepth + 1}) {
+        std::vector<LinearBVHNode> chain(2 * depth + 1, tree[leaf]);
+        for (int d = 0; d < depth; ++d) {
+            chain[2 * d].nPrimitives = 0;
+            chain[2 * d].secondChildOffset = 2 * d + 2;
+            chain[2 * d].axis = 0;
+        }
+        if (depth <= maxBVHDepth)
+            EXPECT_NO_THROW(ex::CheckIsTree(chain, 8));
+        else
+            EXPECT_THROW(ex::CheckIsTree(chain, 8), std::runtime_error);
+    }
+    // Indices of primitives: -1 names none; others must be in the scene.
+    ex::KeptInWorker kept(calls::Handle(), scene.prims, false);
+    EXPECT_EQ(kept.At(-1), nullptr);
+    EXPECT_EQ(kept.At(7), scene.prims[7]);
+    EXPECT_THROW(kept.At(8), std::runtime_error);
+    EXPECT_THROW(kept.At(-2), std::runtime_error);
+}
+
 // ---------------------------------------------------------------------------
 // Exercise 6.12: choosing the SAH split.
 

@@ -1,5 +1,7 @@
 // Checks of BVHAccel's trees for chapter 6's tests, public and hidden (the
-// hidden tests include this file as "../../ch06/bvh_checks.h"):
+// hidden tests include this file as "../../ch06/bvh_checks.h"). The trees
+// are lrt::BVHAccel's or, in the exercises' tests, ex::BVHAccel's: the nodes
+// that the worker built (exercise_calls.h), checked there to be a tree.
 //
 //   TreeWalker         traces a BVHAccel's tree without BVHAccel's own
 //                      traversal, so that the trees built by the SAH and
@@ -11,11 +13,13 @@
 //                      precision at every node where the SAH decided;
 //   CheckMortonOrder   the order of an HLBVH tree's primitives along the
 //                      Morton curve, from codes interleaved bit by bit;
-//   BoxPrimitive       a box as a primitive, which can log the tests of it;
+//   BoxPrimitive       a box as a primitive, which can log the tests of it
+//                      (in exercise_calls.h, which the worker shares);
 //   ClosedMesh         a subdivided octahedron on the unit sphere.
 
 #pragma once
 
+#include "exercise_calls.h"
 #include "lrt/lrt.h"
 
 #include <gtest/gtest.h>
@@ -61,10 +65,12 @@ inline Vector3f RandomDirection(std::mt19937_64 &rng) {
 class TreeWalker : public Primitive {
   public:
     enum class Order { Index, Distance };
-    explicit TreeWalker(std::shared_ptr<const BVHAccel> bvh,
-                        Order order = Order::Index)
-        : bvh(std::move(bvh)), order(order) {}
-    Bounds3f WorldBound() const override { return bvh->WorldBound(); }
+    // BVH: lrt::BVHAccel or ex::BVHAccel.
+    template <typename BVH>
+    explicit TreeWalker(std::shared_ptr<BVH> bvh, Order order = Order::Index)
+        : nodes(bvh->Nodes()), prims(bvh->Primitives()),
+          bounds(bvh->WorldBound()), bvh(std::move(bvh)), order(order) {}
+    Bounds3f WorldBound() const override { return bounds; }
     bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override {
         return Walk(ray, isect);
     }
@@ -78,8 +84,6 @@ class TreeWalker : public Primitive {
         return b.IntersectP(ray, &t0, &t1) ? t0 : Infinity;
     }
     bool Walk(const Ray &ray, SurfaceInteraction *isect) const {
-        const std::vector<LinearBVHNode> &nodes = bvh->Nodes();
-        const auto &prims = bvh->Primitives();
         if (nodes.empty()) return false;
         Vector3f inv(1 / ray.d.x, 1 / ray.d.y, 1 / ray.d.z);
         const int neg[3] = {inv.x < 0, inv.y < 0, inv.z < 0};
@@ -111,12 +115,16 @@ class TreeWalker : public Primitive {
         }
         return found;
     }
-    std::shared_ptr<const BVHAccel> bvh;
+    const std::vector<LinearBVHNode> &nodes;
+    const std::vector<std::shared_ptr<Primitive>> &prims;
+    Bounds3f bounds;
+    std::shared_ptr<const void> bvh;  // which holds the two above
     Order order;
 };
 
-// A primitive that counts the tests of it.
-class CountingPrimitive : public Primitive {
+// A primitive that counts the tests of it (and, in an ex::BVHAccel, the
+// worker's tests of its copy).
+class CountingPrimitive : public Primitive, public ex::NotesTests {
   public:
     CountingPrimitive(std::shared_ptr<Primitive> p, int64_t *count)
         : p(std::move(p)), count(count) {}
@@ -129,6 +137,8 @@ class CountingPrimitive : public Primitive {
         ++*count;
         return p->IntersectP(r);
     }
+    bool KeepsNotes() const override { return true; }
+    void NoteTest() const override { ++*count; }
 
   private:
     std::shared_ptr<Primitive> p;
@@ -170,8 +180,8 @@ struct SAHCheck {
 // exactly when a leaf, which costs N, is no more expensive and
 // N <= maxPrimsInNode. Costs that agree to a relative 1e-5 count as equal,
 // so a float computation that rounds differently may choose either.
-inline SAHCheck CheckSAHChoices(const BVHAccel &bvh,
-                                const char *what = "SAH tree") {
+template <typename BVH>
+SAHCheck CheckSAHChoices(const BVH &bvh, const char *what = "SAH tree") {
     SAHCheck check;
     const std::vector<LinearBVHNode> &nodes = bvh.Nodes();
     const auto &prims = bvh.Primitives();
@@ -331,8 +341,8 @@ inline uint32_t ReferenceMortonCode(const Vector3f &v) {
 // the codes of bvh.Primitives(), computed here from the primitives' boxes
 // as the build computes them, never decrease; returns how many distinct
 // codes there are.
-inline int CheckMortonOrder(const BVHAccel &bvh,
-                            const char *what = "HLBVH tree") {
+template <typename BVH>
+int CheckMortonOrder(const BVH &bvh, const char *what = "HLBVH tree") {
     const auto &prims = bvh.Primitives();
     std::vector<Point3f> centroids;
     Bounds3f centroidBounds;
@@ -357,40 +367,7 @@ inline int CheckMortonOrder(const BVHAccel &bvh,
     return distinct;
 }
 
-// A box as a primitive. A solid box is hit where the ray enters it (a ray
-// that starts inside misses it); a hollow one is never hit. With a log, every
-// call of Intersect() or IntersectP() appends the box's id to it.
-class BoxPrimitive : public Primitive {
-  public:
-    explicit BoxPrimitive(const Bounds3f &b, bool solid = true,
-                          std::vector<int> *log = nullptr, int id = 0)
-        : b(b), solid(solid), log(log), id(id) {}
-    Bounds3f WorldBound() const override { return b; }
-    bool Intersect(const Ray &r, SurfaceInteraction *isect) const override {
-        Float t;
-        if (!Hit(r, &t)) return false;
-        r.tMax = t;
-        isect->primitive = this;
-        return true;
-    }
-    bool IntersectP(const Ray &r) const override {
-        Float t;
-        return Hit(r, &t);
-    }
-
-  private:
-    bool Hit(const Ray &r, Float *t) const {
-        if (log) log->push_back(id);
-        Float t0, t1;
-        if (!solid || !b.IntersectP(r, &t0, &t1)) return false;
-        *t = t0;
-        return t0 > 0 && t0 < r.tMax;
-    }
-    Bounds3f b;
-    bool solid;
-    std::vector<int> *log;
-    int id;
-};
+using BoxPrimitive = ex::BoxPrimitive;
 
 // A closed mesh, for the public and the hidden tests: an octahedron
 // subdivided `levels` times (1-to-4), with its vertices on the unit

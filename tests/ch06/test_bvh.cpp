@@ -9,9 +9,12 @@
 // checked against the cost model in double precision; the Morton codes and
 // the order of an HLBVH tree's primitives along the curve; the order in
 // which BVHAccel's traversal visits children, seen through the primitives it
-// tests. The other tests use no exercise's code (see Accel below).
+// tests. They reach BVHAccel through the exercise calls (exercise_calls.h:
+// ex::BVHAccel and the others); the other tests use no exercise's code (see
+// Accel below).
 
 #include "bvh_checks.h"
+#include "exercise_calls.h"
 #include "lrt/lrt.h"
 
 #include <gtest/gtest.h>
@@ -44,7 +47,9 @@ using SplitMethod = BVHAccel::SplitMethod;
 namespace {
 
 constexpr int kRandomScenes = 1200;
-constexpr int kExerciseRandomScenes = 300;
+// The exercises' random scenes: here, and when graded (where every build and
+// every ray crosses to the worker, whose code is not optimized).
+const int kExerciseRandomScenes = calls::Cases(300, 60);
 constexpr int kRaysPerScene = 32;
 constexpr int kMaxFailuresReported = 10;
 const SplitMethod kMethods[] = {SplitMethod::SAH, SplitMethod::HLBVH,
@@ -58,30 +63,9 @@ const Float kTieTolerance = 256 * std::numeric_limits<Float>::epsilon();
 
 const char *MethodName(SplitMethod m) { return BVHAccel::SplitMethodName(m); }
 
-// A scene owns its transformations: shapes keep pointers to them.
-struct Scene {
-    std::vector<std::unique_ptr<Transform>> transforms;
-    std::vector<std::shared_ptr<Primitive>> prims;
-    Bounds3f bounds;
-
-    const Transform *Keep(const Transform &t) {
-        transforms.push_back(std::make_unique<Transform>(t));
-        return transforms.back().get();
-    }
-    void Add(const std::shared_ptr<Shape> &s) {
-        prims.push_back(std::make_shared<GeometricPrimitive>(s));
-        bounds = Union(bounds, prims.back()->WorldBound());
-    }
-    void AddTriangles(const std::vector<Point3f> &p,
-                      const std::vector<int> &indices) {
-        const Transform *id = Keep(Transform());
-        auto tris = CreateTriangleMesh(id, id, false,
-                                       int(indices.size() / 3),
-                                       indices.data(), int(p.size()),
-                                       p.data(), nullptr, nullptr, nullptr);
-        for (auto &t : tris) Add(t);
-    }
-};
+// A scene: its primitives (scene.prims), and their description, from which
+// the worker makes its own for the exercises' accelerators.
+using Scene = ex::Scene;
 
 Point3f RandomPoint(std::mt19937_64 &rng, const Point3f &c, double r) {
     return Point3f(Float(c.x + U(rng, -r, r)), Float(c.y + U(rng, -r, r)),
@@ -109,8 +93,6 @@ Scene RandomScene(std::mt19937_64 &rng) {
                 o2w = o2w * Scale(Float(U(rng, 0.3, 2)),
                                   Float(U(rng, 0.3, 2)),
                                   Float(U(rng, 0.3, 2)));
-            const Transform *a = scene.Keep(o2w);
-            const Transform *b = scene.Keep(Inverse(o2w));
             Float r = Float(size);
             Float zMin = -r, zMax = r, phiMax = 360;
             if (rng() % 4 == 0) {
@@ -118,19 +100,17 @@ Scene RandomScene(std::mt19937_64 &rng) {
                 zMax = Float(U(rng, 0.3, 1)) * r;
                 phiMax = Float(U(rng, 30, 360));
             }
-            scene.Add(std::make_shared<Sphere>(a, b, rng() % 2 == 0, r, zMin,
-                                               zMax, phiMax));
+            scene.AddSphere(o2w, Inverse(o2w), rng() % 2 == 0, r, zMin, zMax,
+                            phiMax);
         } else if (kind == 1) {
             Transform o2w = Translate(Vector3f(c));
             if (rng() % 3 != 0)  // else: axis-aligned, with a flat box
                 o2w = o2w * Rotate(Float(U(rng, 0, 360)), RandomDirection(rng));
-            const Transform *a = scene.Keep(o2w);
-            const Transform *b = scene.Keep(Inverse(o2w));
             Float r = Float(size);
             Float ri = rng() % 3 == 0 ? Float(U(rng, 0, 0.8)) * r : 0;
             Float phiMax = rng() % 3 == 0 ? Float(U(rng, 30, 360)) : 360;
-            scene.Add(std::make_shared<Disk>(a, b, false, Float(U(rng, -1, 1)),
-                                             r, ri, phiMax));
+            scene.AddDisk(o2w, Inverse(o2w), false, Float(U(rng, -1, 1)), r, ri,
+                          phiMax);
         } else {
             // A small strip of triangles sharing edges; sometimes flat in z.
             int nt = 1 + int(rng() % 4);
@@ -271,10 +251,12 @@ bool IsDegenerate(const Triangle &tri) {
     return Cross(p0 - p2, p1 - p2).LengthSquared() == 0;
 }
 
-// Structure of a BVHAccel: depth-first layout, boxes equal to the union of
-// what is below them, leaf sizes within the limit, every valid primitive
-// in exactly one leaf, node counts consistent with Stats().
-void CheckStructure(const BVHAccel &bvh,
+// Structure of a BVHAccel (lrt::BVHAccel or the worker's ex::BVHAccel):
+// depth-first layout, boxes equal to the union of what is below them, leaf
+// sizes within the limit, every valid primitive in exactly one leaf, node
+// counts consistent with Stats().
+template <typename BVH>
+void CheckStructure(const BVH &bvh,
                     const std::vector<std::shared_ptr<Primitive>> &input) {
     const std::vector<LinearBVHNode> &nodes = bvh.Nodes();
     const auto &prims = bvh.Primitives();
@@ -301,7 +283,7 @@ void CheckStructure(const BVHAccel &bvh,
             EXPECT_LE(n.nPrimitives, bvh.MaxPrimsInNode());
             EXPECT_GE(n.primitivesOffset, 0);
             EXPECT_LE(n.primitivesOffset + n.nPrimitives, int(prims.size()));
-            for (int k = n.primitivesOffset;
+            for (int k = std::max(n.primitivesOffset, 0);
                  k < n.primitivesOffset + n.nPrimitives &&
                  k < int(prims.size());
                  ++k) {
@@ -311,7 +293,8 @@ void CheckStructure(const BVHAccel &bvh,
         } else {
             EXPECT_LT(n.axis, 3);
             if (i + 1 >= int(nodes.size()) || n.secondChildOffset <= i + 1 ||
-                n.secondChildOffset >= int(nodes.size())) {
+                n.secondChildOffset >= int(nodes.size()) ||
+                depth >= maxBVHDepth) {
                 ADD_FAILURE() << "bad child offsets at node " << i;
                 return n.bounds;
             }
@@ -438,48 +421,41 @@ void CheckStructure(const FastBVHAccel &bvh,
     EXPECT_EQ(s.maxDepth, maxDepth);
 }
 
-std::shared_ptr<Primitive> UnitSphereAt(Scene &scene, const Point3f &c,
-                                        Float r = 1) {
-    const Transform *a = scene.Keep(Translate(Vector3f(c)));
-    const Transform *b = scene.Keep(Translate(-Vector3f(c)));
-    auto s = std::make_shared<Sphere>(a, b, false, r, -r, r, 360.f);
-    scene.Add(s);
-    return scene.prims.back();
+// A FastBVHAccel that the worker built keeps its nodes: its primitives
+// must be the valid ones of the input, each once.
+void CheckStructure(const ex::FastBVHAccel &bvh,
+                    const std::vector<std::shared_ptr<Primitive>> &input) {
+    const auto &prims = bvh.Primitives();
+    std::multiset<const Primitive *> got;
+    for (const auto &p : prims) got.insert(p.get());
+    ASSERT_EQ(got, ValidPrimitives(input));
+    EXPECT_EQ(bvh.Stats().primitives, int64_t(prims.size()));
+    EXPECT_EQ(prims.empty(), bvh.WorldBound().IsEmpty());
 }
 
-// A primitive whose bounds are whatever the test says, and which is hit by
-// every ray at t = 1: it must never be reported by a BVH that skips it.
-class OddBoundsPrimitive : public Primitive {
-  public:
-    explicit OddBoundsPrimitive(const Bounds3f &b) : b(b) {}
-    Bounds3f WorldBound() const override { return b; }
-    bool Intersect(const Ray &r, SurfaceInteraction *isect) const override {
-        if (r.tMax < 1) return false;
-        r.tMax = 1;
-        isect->primitive = this;
-        return true;
-    }
-    bool IntersectP(const Ray &r) const override { return r.tMax >= 1; }
-
-  private:
-    Bounds3f b;
-};
+std::shared_ptr<Primitive> UnitSphereAt(Scene &scene, const Point3f &c,
+                                        Float r = 1) {
+    scene.AddSphere(Translate(Vector3f(c)), Translate(-Vector3f(c)), false, r,
+                    -r, r, 360.f);
+    return scene.prims.back();
+}
 
 // The accelerators under test come in sets. Chapter 6's graded exercises
 // hold BVHAccel's SAH decisions (ex-6.12), the Morton codes and radix sort
 // of its HLBVH build (ex-6.13) and its choice of the child to visit first
 // (ex-6.14); in the student edition all of them throw. A test of exercise K
-// (suite Ex6_K_*) uses the set of that exercise; every other test uses
-// accelerators whose code holds no exercise: FastBVHAccel with its own SAH
-// builder and with BVHAccel's Middle and EqualCounts builders, and BVHAccel's
-// Middle and EqualCounts trees, traced through a FastBVHAccel that adopts
-// them. Each set checks the structure of every tree it builds.
+// (suite Ex6_K_*) uses the set of that exercise, whose accelerators the
+// worker builds and traces (ex::BVHAccel, ex::FastBVHAccel); every other
+// test uses accelerators whose code holds no exercise: FastBVHAccel with its
+// own SAH builder and with BVHAccel's Middle and EqualCounts builders, and
+// BVHAccel's Middle and EqualCounts trees, traced through a FastBVHAccel that
+// adopts them. Each set checks the structure of every tree it builds.
 struct Accel {
     std::string name;
     std::unique_ptr<Primitive> accel;
 };
 using Prims = std::vector<std::shared_ptr<Primitive>>;
-using AccelSet = std::function<std::vector<Accel>(const Prims &, int)>;
+using AccelSet = std::function<std::vector<Accel>(const Scene &, int)>;
 
 std::string Label(const std::string &kind, SplitMethod m, int leafSize) {
     return kind + " " + MethodName(m) + "(" + std::to_string(leafSize) + ")";
@@ -499,7 +475,8 @@ const std::vector<SplitMethod> kPlainMethods = {
 // No exercise: FastBVHAccel with the given methods (not HLBVH) and, for
 // Middle and EqualCounts, BVHAccel's tree adopted by a FastBVHAccel.
 AccelSet Plain(std::vector<SplitMethod> methods) {
-    return [methods](const Prims &prims, int leafSize) {
+    return [methods](const Scene &scene, int leafSize) {
+        const Prims &prims = scene.prims;
         std::vector<Accel> v;
         for (SplitMethod m : methods) {
             if (m != SplitMethod::SAH) {
@@ -516,31 +493,49 @@ AccelSet Plain(std::vector<SplitMethod> methods) {
 }
 
 // BVHAccel itself, traced by its own Intersect() and IntersectP(): with
-// Middle and EqualCounts, the set of ex-6.14. (A tree of a single leaf
-// never reaches the exercise's code.)
+// one leaf, which never reaches the exercise's code.
 AccelSet OwnTraversal(std::vector<SplitMethod> methods) {
-    return [methods](const Prims &prims, int leafSize) {
+    return [methods](const Scene &scene, int leafSize) {
         std::vector<Accel> v;
         for (SplitMethod m : methods) {
-            auto bvh = std::make_unique<BVHAccel>(prims, leafSize, m);
-            CheckStructure(*bvh, prims);
+            auto bvh = std::make_unique<BVHAccel>(scene.prims, leafSize, m);
+            CheckStructure(*bvh, scene.prims);
             v.push_back({Label("BVHAccel", m, leafSize), std::move(bvh)});
         }
         return v;
     };
 }
-const AccelSet kTraversalSet =
-    OwnTraversal({SplitMethod::Middle, SplitMethod::EqualCounts});
+
+// ex-6.14: BVHAccel's Middle and EqualCounts trees, traced by its own
+// Intersect() and IntersectP().
+std::vector<Accel> TraversalSet(const Scene &scene, int leafSize) {
+    std::vector<Accel> v;
+    for (SplitMethod m : {SplitMethod::Middle, SplitMethod::EqualCounts}) {
+        auto bvh = std::make_unique<ex::BVHAccel>(scene, leafSize, m);
+        CheckStructure(*bvh, scene.prims);
+        v.push_back({Label("BVHAccel", m, leafSize), std::move(bvh)});
+    }
+    return v;
+}
+
+// The tree of an ex::BVHAccel traced by a FastBVHAccel that adopts it (in
+// the worker).
+void AddAdopted(std::vector<Accel> *v, const ex::BVHAccel &bvh, SplitMethod m,
+                int leafSize) {
+    v->push_back({Label("FastBVHAccel from BVHAccel", m, leafSize),
+                  std::make_unique<ex::BVHAccel::Adopted>(bvh)});
+}
 
 // ex-6.12: BVHAccel's SAH tree, its decisions checked against the cost
 // model, traced by a TreeWalker and by a FastBVHAccel that adopts it.
-std::vector<Accel> SAHSet(const Prims &prims, int leafSize) {
+std::vector<Accel> SAHSet(const Scene &scene, int leafSize) {
     std::vector<Accel> v;
-    auto bvh = std::make_shared<BVHAccel>(prims, leafSize, SplitMethod::SAH);
+    auto bvh =
+        std::make_shared<ex::BVHAccel>(scene, leafSize, SplitMethod::SAH);
     std::string name = Label("BVHAccel", SplitMethod::SAH, leafSize);
-    CheckStructure(*bvh, prims);
+    CheckStructure(*bvh, scene.prims);
     CheckSAHChoices(*bvh, name.c_str());
-    AddAdopted(&v, *bvh, prims, SplitMethod::SAH, leafSize);
+    AddAdopted(&v, *bvh, SplitMethod::SAH, leafSize);
     v.push_back({name + " traced by TreeWalker",
                  std::make_unique<TreeWalker>(bvh)});
     return v;
@@ -549,26 +544,31 @@ std::vector<Accel> SAHSet(const Prims &prims, int leafSize) {
 // ex-6.13: BVHAccel's HLBVH tree, its primitives checked to be in Morton
 // order, traced by a TreeWalker and by a FastBVHAccel that adopts it; and
 // FastBVHAccel with the HLBVH, which uses BVHAccel's builder.
-std::vector<Accel> HLBVHSet(const Prims &prims, int leafSize) {
+std::vector<Accel> HLBVHSet(const Scene &scene, int leafSize) {
     std::vector<Accel> v;
     auto bvh =
-        std::make_shared<BVHAccel>(prims, leafSize, SplitMethod::HLBVH);
+        std::make_shared<ex::BVHAccel>(scene, leafSize, SplitMethod::HLBVH);
     std::string name = Label("BVHAccel", SplitMethod::HLBVH, leafSize);
-    CheckStructure(*bvh, prims);
+    CheckStructure(*bvh, scene.prims);
     CheckMortonOrder(*bvh, name.c_str());
-    AddAdopted(&v, *bvh, prims, SplitMethod::HLBVH, leafSize);
+    AddAdopted(&v, *bvh, SplitMethod::HLBVH, leafSize);
     v.push_back({name + " traced by TreeWalker",
                  std::make_unique<TreeWalker>(bvh)});
-    auto fast =
-        std::make_unique<FastBVHAccel>(prims, leafSize, SplitMethod::HLBVH);
-    CheckStructure(*fast, prims);
+    auto fast = std::make_unique<ex::FastBVHAccel>(scene, leafSize,
+                                                   SplitMethod::HLBVH);
+    CheckStructure(*fast, scene.prims);
     v.push_back({Label("FastBVHAccel", SplitMethod::HLBVH, leafSize),
                  std::move(fast)});
     return v;
 }
 
 // Builds the set's accelerators over random scenes with several leaf sizes
-// and compares each with brute force on random rays.
+// and compares each with brute force on random rays. The seed is fixed, also
+// when graded: on a few rays of some random scenes of spheres, brute force
+// and every accelerator disagree on the closest hit (a sphere's error bound
+// rejects its nearer hit once tMax has shrunk to a farther one's, a defect
+// of Sphere::Intersect() whatever the code under test), and these seeds'
+// scenes have none.
 void RunRandomScenes(const AccelSet &set, uint64_t seed, int nScenes) {
     std::mt19937_64 rng(seed);
     int failures = 0;
@@ -577,7 +577,7 @@ void RunRandomScenes(const AccelSet &set, uint64_t seed, int nScenes) {
         Scene scene = RandomScene(rng);
         std::vector<Accel> accels;
         for (int leafSize : kLeafSizes)
-            for (Accel &a : set(scene.prims, leafSize))
+            for (Accel &a : set(scene, leafSize))
                 accels.push_back(std::move(a));
         if (::testing::Test::HasFatalFailure()) return;
         for (int r = 0; r < kRaysPerScene; ++r) {
@@ -605,10 +605,11 @@ void RunRandomScenes(const AccelSet &set, uint64_t seed, int nScenes) {
 void CheckOnePrimitive(const AccelSet &set) {
     Scene scene;
     UnitSphereAt(scene, Point3f(1, 2, 3), 0.5f);
-    std::mt19937_64 rng(611);
+    std::mt19937_64 rng(calls::Seed(611));
+    const int rays = calls::Cases(2000, 400);
     for (int leafSize : {1, 4}) {
-        std::vector<Accel> accels = set(scene.prims, leafSize);
-        for (int i = 0; i < 2000; ++i) {
+        std::vector<Accel> accels = set(scene, leafSize);
+        for (int i = 0; i < rays; ++i) {
             Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
             Oracle o = BruteForce(scene.prims, ray);
             for (const Accel &a : accels)
@@ -619,18 +620,21 @@ void CheckOnePrimitive(const AccelSet &set) {
 
 // Many primitives with the same centroid: pbrt would make one leaf of all
 // of them; ours keeps leaves within the limit, and 70,000 copies of one
-// triangle (more than a 16-bit count holds) must work.
+// triangle (more than a 16-bit count holds) must work. (Graded, where the
+// leaf limit, which is not an exercise's code, is not what is checked, and
+// the worker's code is not optimized, 7,000 copies.)
 void CheckAllCentroidsEqual(const AccelSet &set) {
     Scene scene;
     std::vector<Point3f> p = {Point3f(-1, -1, 0), Point3f(1, -1, 0),
                               Point3f(0, 2, 0)};
     std::vector<int> idx;
-    for (int i = 0; i < 70000; ++i) idx.insert(idx.end(), {0, 1, 2});
+    const int copies = calls::Cases(70000, 7000);
+    for (int i = 0; i < copies; ++i) idx.insert(idx.end(), {0, 1, 2});
     scene.AddTriangles(p, idx);
     for (int i = 0; i < 50; ++i)  // concentric spheres: equal centroids
         UnitSphereAt(scene, Point3f(0, 0, 0), 3 + Float(i) / 10);
     for (int leafSize : {1, 4}) {
-        for (const Accel &acc : set(scene.prims, leafSize)) {
+        for (const Accel &acc : set(scene, leafSize)) {
             SCOPED_TRACE(acc.name);
             const Primitive *a = acc.accel.get();
             // From inside all the spheres, down onto the triangle.
@@ -671,16 +675,16 @@ void CheckZeroExtentBoxes(const AccelSet &set) {
         idx.insert(idx.end(), {base, base + 1, base + 2});
     }
     scene.AddTriangles(p, idx);
-    for (int i = 0; i < 10; ++i) {
-        const Transform *a = scene.Keep(Translate(Vector3f(Float(i), 7, 0)));
-        const Transform *b = scene.Keep(Translate(Vector3f(-Float(i), -7, 0)));
-        scene.Add(std::make_shared<Disk>(a, b, false, 1.f, 0.4f, 0.f, 360.f));
-    }
-    std::mt19937_64 rng(612);
+    for (int i = 0; i < 10; ++i)
+        scene.AddDisk(Translate(Vector3f(Float(i), 7, 0)),
+                      Translate(Vector3f(-Float(i), -7, 0)), false, 1.f, 0.4f,
+                      0.f, 360.f);
+    std::mt19937_64 rng(calls::Seed(612));
+    const int rays = calls::Cases(3000, 600);
     int failures = 0;
     for (int leafSize : {1, 3, 16}) {
-        std::vector<Accel> accels = set(scene.prims, leafSize);
-        for (int i = 0; i < 3000; ++i) {
+        std::vector<Accel> accels = set(scene, leafSize);
+        for (int i = 0; i < rays; ++i) {
             Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
             if (i % 3 == 0) {  // in the plane z = 0 or z = 1
                 ray.o.z = Float(i % 2);
@@ -712,24 +716,22 @@ void CheckZeroExtentBoxes(const AccelSet &set) {
 // aggregate, for one) is left out of the tree and never hit; a finite box at
 // the limits of the range is kept, and its centroid must not overflow.
 void CheckNaNAndInfiniteBounds(const AccelSet &set) {
-    Scene scene;
-    UnitSphereAt(scene, Point3f(0, 0, 5));
-    UnitSphereAt(scene, Point3f(3, 0, 5));
+    Scene prims;
+    UnitSphereAt(prims, Point3f(0, 0, 5));
+    UnitSphereAt(prims, Point3f(3, 0, 5));
     const Float nan = std::numeric_limits<Float>::quiet_NaN();
-    std::vector<std::shared_ptr<Primitive>> prims = scene.prims;
     Bounds3f nanBox(Point3f(0, 0, 0), Point3f(1, 1, 1));
     nanBox.pMax.y = nan;
     Bounds3f infBox(Point3f(0, 0, 0), Point3f(Infinity, 1, 1));
     Bounds3f hugeBox(Point3f(-MaxFloat, -MaxFloat, -MaxFloat),
                      Point3f(MaxFloat, MaxFloat, MaxFloat));
-    prims.push_back(std::make_shared<OddBoundsPrimitive>(nanBox));
-    prims.push_back(std::make_shared<OddBoundsPrimitive>(infBox));
-    prims.push_back(std::make_shared<OddBoundsPrimitive>(Bounds3f()));
-    std::vector<std::shared_ptr<Primitive>> none;
-    prims.push_back(std::make_shared<BVHAccel>(none));
-    auto huge = std::make_shared<OddBoundsPrimitive>(hugeBox);
-    std::vector<std::shared_ptr<Primitive>> withHuge = prims;
-    withHuge.push_back(huge);
+    prims.AddOddBounds(nanBox);
+    prims.AddOddBounds(infBox);
+    prims.AddOddBounds(Bounds3f());
+    prims.AddEmptyAggregate();
+    Scene withHuge = prims;
+    withHuge.AddOddBounds(hugeBox);
+    std::shared_ptr<Primitive> huge = withHuge.prims.back();
     for (int leafSize : {1, 4}) {
         for (const Accel &acc : set(prims, leafSize)) {
             SCOPED_TRACE(acc.name);
@@ -769,11 +771,12 @@ void CheckExponentiallySpacedCentroids(const AccelSet &set) {
         idx.insert(idx.end(), {base, base + 1, base + 2});
     }
     scene.AddTriangles(p, idx);
-    std::mt19937_64 rng(613);
+    std::mt19937_64 rng(calls::Seed(613));
+    const int rays = calls::Cases(2000, 400);
     int failures = 0;
     for (int leafSize : {1, 2}) {
-        std::vector<Accel> accels = set(scene.prims, leafSize);
-        for (int i = 0; i < 2000; ++i) {
+        std::vector<Accel> accels = set(scene, leafSize);
+        for (int i = 0; i < rays; ++i) {
             Ray ray(Point3f(std::ldexp(Float(1), -int(rng() % n)) *
                                 Float(U(rng, 0.8, 1.2)),
                             Float(U(rng, -1, 1)), 1),
@@ -794,15 +797,15 @@ void CheckExponentiallySpacedCentroids(const AccelSet &set) {
 // zero area), many copies of a few, or large boxes around nearly the same
 // center (where leaves are cheaper than splits); sizes over several orders
 // of magnitude.
-Prims RandomBoxes(std::mt19937_64 &rng, int n) {
-    Prims prims;
+Scene RandomBoxes(std::mt19937_64 &rng, int n) {
+    Scene scene;
     int kind = int(rng() % 6);
     int nCenters = 1 + int(rng() % 4);
     std::vector<Point3f> centers;
     for (int i = 0; i < nCenters; ++i)
         centers.push_back(RandomPoint(rng, Point3f(0, 0, 0), 50));
     std::vector<Bounds3f> few;
-    while (int(prims.size()) < n) {
+    while (int(scene.prims.size()) < n) {
         Point3f c = RandomPoint(rng, Point3f(0, 0, 0), 50);
         if (kind == 1)
             c = RandomPoint(rng, centers[rng() % nCenters], U(rng, 0.5, 5));
@@ -826,18 +829,18 @@ Prims RandomBoxes(std::mt19937_64 &rng, int n) {
             c = RandomPoint(rng, centers[0], 0.2);
             b = Bounds3f(c - Vector3f(3, 2, 1), c + Vector3f(3, 2, 1));
         }
-        prims.push_back(std::make_shared<BoxPrimitive>(b));
+        scene.AddBox(b);
     }
-    return prims;
+    return scene;
 }
 
 // Unit cubes [x, x + 1] x [0, 1] x [0, 1] at the given x, as primitives.
-Prims CubesAlongX(std::initializer_list<double> xs) {
-    Prims prims;
+Scene CubesAlongX(std::initializer_list<double> xs) {
+    Scene scene;
     for (double x : xs)
-        prims.push_back(std::make_shared<BoxPrimitive>(
-            Bounds3f(Point3f(Float(x), 0, 0), Point3f(Float(x + 1), 1, 1))));
-    return prims;
+        scene.AddBox(
+            Bounds3f(Point3f(Float(x), 0, 0), Point3f(Float(x + 1), 1, 1)));
+    return scene;
 }
 
 }  // namespace
@@ -878,9 +881,9 @@ TEST(BVHDegenerate, NoPrimitives) {
 // never reach an exercise's code then (the HLBVH does: its test is
 // Ex6_13_HLBVH.DegenerateScenes).
 TEST(BVHDegenerate, OnePrimitive) {
-    CheckOnePrimitive([](const Prims &prims, int leafSize) {
-        std::vector<Accel> v = Plain(kPlainMethods)(prims, leafSize);
-        for (Accel &a : OwnTraversal(kPlainMethods)(prims, leafSize))
+    CheckOnePrimitive([](const Scene &scene, int leafSize) {
+        std::vector<Accel> v = Plain(kPlainMethods)(scene, leafSize);
+        for (Accel &a : OwnTraversal(kPlainMethods)(scene, leafSize))
             v.push_back(std::move(a));
         return v;
     });
@@ -1152,14 +1155,81 @@ TEST(BVHHelpers, StatsSAHCost) {
     EXPECT_NEAR(fast.Stats().sahCost, 1 + 2 * 24.0 / 56.0, 1e-6);
 }
 
+// The exercises' tests walk the nodes that the worker answers with, which a
+// wrong or hostile worker may fill with anything: a node array that is not a
+// tree as BVHAccel lays it out is refused before any check walks it, and so
+// is a primitive's index outside the scene (exercise_calls.h).
+TEST(ExerciseCalls, AnswersThatAreNotATreeAreRefused) {
+    Scene scene;
+    for (int i = 0; i < 8; ++i)
+        scene.AddBox(Bounds3f(Point3f(Float(2 * i), 0, 0),
+                              Point3f(Float(2 * i + 1), 1, 1)));
+    BVHAccel bvh(scene.prims, 1, SplitMethod::Middle);
+    const std::vector<LinearBVHNode> tree = bvh.Nodes();
+    ASSERT_EQ(tree.size(), 15u);
+    EXPECT_NO_THROW(ex::CheckIsTree(tree, 8));
+    EXPECT_NO_THROW(ex::CheckIsTree({}, 0));
+    auto refused = [&](const char *what,
+                       std::function<void(std::vector<LinearBVHNode> &)> f,
+                       size_t nPrimitives = 8) {
+        std::vector<LinearBVHNode> nodes = tree;
+        f(nodes);
+        EXPECT_THROW(ex::CheckIsTree(nodes, nPrimitives), std::runtime_error)
+            << what;
+    };
+    int leaf = 0;
+    while (tree[leaf].nPrimitives == 0) ++leaf;
+    refused("second child past the end",
+            [](auto &n) { n[0].secondChildOffset = int(n.size()); });
+    refused("second child before the node",
+            [](auto &n) { n[1].secondChildOffset = -7; });
+    refused("both children the same",
+            [](auto &n) { n[0].secondChildOffset = 1; });
+    refused("a node reached twice", [](auto &n) {
+        n[1].secondChildOffset = n[0].secondChildOffset;
+    });
+    refused("a node reached from nowhere",
+            [&](auto &n) { n.push_back(tree[leaf]); });
+    refused("an interior node as the last",
+            [](auto &n) { n.back().nPrimitives = 0; });
+    refused("a split along no axis", [](auto &n) { n[0].axis = 3; });
+    refused("a leaf past the primitives", [&](auto &n) {
+        n[leaf].primitivesOffset = 7;
+        n[leaf].nPrimitives = 2;
+    });
+    refused("a leaf before the primitives",
+            [&](auto &n) { n[leaf].primitivesOffset = -1; });
+    refused("leaves with no primitives", [](auto &) {}, 0);
+    // A chain of interior nodes, each with a leaf as its first child: as
+    // deep as BVHAccel's traversal stack allows, and one deeper.
+    for (int depth : {maxBVHDepth, maxBVHDepth + 1}) {
+        std::vector<LinearBVHNode> chain(2 * depth + 1, tree[leaf]);
+        for (int d = 0; d < depth; ++d) {
+            chain[2 * d].nPrimitives = 0;
+            chain[2 * d].secondChildOffset = 2 * d + 2;
+            chain[2 * d].axis = 0;
+        }
+        if (depth <= maxBVHDepth)
+            EXPECT_NO_THROW(ex::CheckIsTree(chain, 8));
+        else
+            EXPECT_THROW(ex::CheckIsTree(chain, 8), std::runtime_error);
+    }
+    // Indices of primitives: -1 names none; others must be in the scene.
+    ex::KeptInWorker kept(calls::Handle(), scene.prims, false);
+    EXPECT_EQ(kept.At(-1), nullptr);
+    EXPECT_EQ(kept.At(7), scene.prims[7]);
+    EXPECT_THROW(kept.At(8), std::runtime_error);
+    EXPECT_THROW(kept.At(-2), std::runtime_error);
+}
+
 // ---------------------------------------------------------------------------
 // Exercise 6.12: choosing the SAH split.
 
-TEST(Ex6_12_SAH, RandomScenes) {
+EXERCISE_TEST(Ex6_12_SAH, RandomScenes) {
     RunRandomScenes(SAHSet, 601, kExerciseRandomScenes);
 }
 
-TEST(Ex6_12_SAH, DegenerateScenes) {
+EXERCISE_TEST(Ex6_12_SAH, DegenerateScenes) {
     CheckAllCentroidsEqual(SAHSet);
     CheckZeroExtentBoxes(SAHSet);
     CheckNaNAndInfiniteBounds(SAHSet);
@@ -1168,58 +1238,57 @@ TEST(Ex6_12_SAH, DegenerateScenes) {
 
 // Small scenes whose SAH decisions follow from the costs by hand (areas of
 // unit cubes and their unions; c_T = 1/8, c_I = 1).
-TEST(Ex6_12_SAH, SmallScenesWithKnownDecisions) {
+EXERCISE_TEST(Ex6_12_SAH, SmallScenesWithKnownDecisions) {
     // Cubes at 0, 1.5 and 10: splitting {0, 1.5} from {10} costs
     // 1/8 + (2 * 12 + 1 * 6) / 46 = 0.777, splitting {0} from the rest
     // 1/8 + (6 + 2 * 40) / 46 = 1.995, a leaf 3. The far cube is split off
     // even though a leaf of three is allowed.
     {
-        Prims prims = CubesAlongX({0, 1.5, 10});
-        BVHAccel bvh(prims, 3, SplitMethod::SAH);
-        CheckStructure(bvh, prims);
+        Scene cubes = CubesAlongX({0, 1.5, 10});
+        ex::BVHAccel bvh(cubes, 3, SplitMethod::SAH);
+        CheckStructure(bvh, cubes.prims);
         const auto &nodes = bvh.Nodes();
         ASSERT_EQ(nodes.size(), 5u);
         ASSERT_EQ(nodes[0].nPrimitives, 0);
         const LinearBVHNode &far = nodes[nodes[0].secondChildOffset];
         ASSERT_EQ(far.nPrimitives, 1);
-        EXPECT_EQ(far.bounds, prims[2]->WorldBound());
-        EXPECT_EQ(bvh.Primitives()[far.primitivesOffset], prims[2]);
+        EXPECT_EQ(far.bounds, cubes.prims[2]->WorldBound());
+        EXPECT_EQ(bvh.Primitives()[far.primitivesOffset], cubes.prims[2]);
     }
     // Cubes at 0, d and 2d: every split costs
     // 1/8 + (6 + 2 (6 + 4d)) / (6 + 8d), which is 3.048 for d = 0.03 and
     // 2.932 for d = 0.08, against 3 for a leaf.
     for (int leafSize : {3, 4, 255}) {
-        Prims close = CubesAlongX({0, 0.03, 0.06});
-        BVHAccel leaf(close, leafSize, SplitMethod::SAH);
-        CheckStructure(leaf, close);
+        Scene close = CubesAlongX({0, 0.03, 0.06});
+        ex::BVHAccel leaf(close, leafSize, SplitMethod::SAH);
+        CheckStructure(leaf, close.prims);
         EXPECT_EQ(leaf.Nodes().size(), 1u)
             << "three cubes 0.03 apart: a leaf costs 3, a split 3.048 "
             << "(maxPrimsInNode " << leafSize << ")";
-        Prims apart = CubesAlongX({0, 0.08, 0.16});
-        BVHAccel split(apart, leafSize, SplitMethod::SAH);
-        CheckStructure(split, apart);
+        Scene apart = CubesAlongX({0, 0.08, 0.16});
+        ex::BVHAccel split(apart, leafSize, SplitMethod::SAH);
+        CheckStructure(split, apart.prims);
         EXPECT_EQ(split.Nodes().size(), 5u)
             << "three cubes 0.08 apart: a split costs 2.932, a leaf 3 "
             << "(maxPrimsInNode " << leafSize << ")";
     }
     // A leaf that would hold more than maxPrimsInNode is no option.
     for (int leafSize : {1, 2}) {
-        Prims close = CubesAlongX({0, 0.03, 0.06});
-        BVHAccel bvh(close, leafSize, SplitMethod::SAH);
-        CheckStructure(bvh, close);
+        Scene close = CubesAlongX({0, 0.03, 0.06});
+        ex::BVHAccel bvh(close, leafSize, SplitMethod::SAH);
+        CheckStructure(bvh, close.prims);
         EXPECT_EQ(bvh.Nodes().size(), 5u) << "maxPrimsInNode " << leafSize;
     }
     // Segments on the x axis: every box has zero area, so every split costs
     // c_T, less than any leaf, and the tree is split down to single
     // primitives even though one leaf could hold them all.
     {
-        Prims segments;
+        Scene segments;
         for (int i = 0; i < 5; ++i)
-            segments.push_back(std::make_shared<BoxPrimitive>(
-                Bounds3f(Point3f(Float(2 * i), 0, 0),
-                         Point3f(Float(2 * i + 1), 0, 0))));
-        BVHAccel bvh(segments, 255, SplitMethod::SAH);
-        CheckStructure(bvh, segments);
+            segments.AddBox(Bounds3f(Point3f(Float(2 * i), 0, 0),
+                                     Point3f(Float(2 * i + 1), 0, 0)));
+        ex::BVHAccel bvh(segments, 255, SplitMethod::SAH);
+        CheckStructure(bvh, segments.prims);
         BVHStats s = bvh.Stats();
         EXPECT_EQ(s.leafNodes, 5) << "boxes of zero area";
         EXPECT_EQ(s.maxLeafSize, 1);
@@ -1229,18 +1298,19 @@ TEST(Ex6_12_SAH, SmallScenesWithKnownDecisions) {
 // Random scenes of boxes (clustered, flat, on a line, repeated) and leaf
 // sizes; every decision of every tree is checked against the cost model.
 // The scenes must make the SAH decide many times, and choose leaves too.
-TEST(Ex6_12_SAH, DecisionsFollowTheCostModel) {
-    std::mt19937_64 rng(6121);
+EXERCISE_TEST(Ex6_12_SAH, DecisionsFollowTheCostModel) {
+    std::mt19937_64 rng(calls::Seed(6121));
     const int leafSizes[] = {1, 2, 3, 4, 6, 8, 16, 255};
+    const int scenes = calls::Cases(1000, 300);
     SAHCheck total;
-    for (int scene = 0; scene < 1000; ++scene) {
+    for (int sceneIndex = 0; sceneIndex < scenes; ++sceneIndex) {
         int n = 3 + int(rng() % 40);
         if (rng() % 6 == 0) n += int(rng() % 400);
-        Prims prims = RandomBoxes(rng, n);
+        Scene boxes = RandomBoxes(rng, n);
         int leafSize = leafSizes[rng() % 8];
-        BVHAccel bvh(prims, leafSize, SplitMethod::SAH);
-        CheckStructure(bvh, prims);
-        std::string name = "scene " + std::to_string(scene) + ", " +
+        ex::BVHAccel bvh(boxes, leafSize, SplitMethod::SAH);
+        CheckStructure(bvh, boxes.prims);
+        std::string name = "scene " + std::to_string(sceneIndex) + ", " +
                            std::to_string(n) + " boxes, maxPrimsInNode " +
                            std::to_string(leafSize);
         SAHCheck c = CheckSAHChoices(bvh, name.c_str());
@@ -1248,27 +1318,30 @@ TEST(Ex6_12_SAH, DecisionsFollowTheCostModel) {
         total.leaves += c.leaves;
         if (::testing::Test::HasFailure()) return;
     }
-    EXPECT_GT(total.decisions, 20000);
-    EXPECT_GT(total.leaves, 400);
+    // (Over 30 gradings, 19.8 to 32.7 decisions and 0.56 to 2.5 leaves per
+    // scene.)
+    EXPECT_GT(total.decisions, 10 * scenes);
+    EXPECT_GT(total.leaves, scenes / 5);
 }
 
 // ---------------------------------------------------------------------------
 // Exercise 6.13: sorting along the Morton curve.
 
-TEST(Ex6_13_MortonCodes, LeftShift3SpreadsTheBits) {
+EXERCISE_TEST(Ex6_13_MortonCodes, LeftShift3SpreadsTheBits) {
     for (uint32_t x = 0; x < 1024; ++x) {
         uint32_t expected = 0;
         for (int i = 0; i < 10; ++i)
             if (x & (1u << i)) expected |= 1u << (3 * i);
-        ASSERT_EQ(LeftShift3(x), expected) << x;
+        ASSERT_EQ(ex::LeftShift3(x), expected) << x;
     }
-    EXPECT_EQ(LeftShift3(1024), LeftShift3(1023));
-    EXPECT_EQ(LeftShift3(0xffffffffu), LeftShift3(1023));
+    EXPECT_EQ(ex::LeftShift3(1024), ex::LeftShift3(1023));
+    EXPECT_EQ(ex::LeftShift3(0xffffffffu), ex::LeftShift3(1023));
 }
 
-TEST(Ex6_13_MortonCodes, EncodeInterleavesCoordinates) {
-    std::mt19937_64 rng(616);
-    for (int i = 0; i < 100000; ++i) {
+EXERCISE_TEST(Ex6_13_MortonCodes, EncodeInterleavesCoordinates) {
+    std::mt19937_64 rng(calls::Seed(616));
+    const int cases = calls::Cases(100000, 20000);
+    for (int i = 0; i < cases; ++i) {
         Vector3f v(Float(U(rng, 0, 1024)), Float(U(rng, 0, 1024)),
                    Float(U(rng, 0, 1024)));
         uint32_t q[3];
@@ -1278,23 +1351,24 @@ TEST(Ex6_13_MortonCodes, EncodeInterleavesCoordinates) {
         for (int bit = 0; bit < 10; ++bit)
             for (int a = 0; a < 3; ++a)
                 if (q[a] & (1u << bit)) expected |= 1u << (3 * bit + a);
-        ASSERT_EQ(EncodeMorton3(v), expected) << v;
+        ASSERT_EQ(ex::EncodeMorton3(v), expected) << v;
     }
+    // (QuantizeMorton() is the book's, outside the exercise.)
     const Float nan = std::numeric_limits<Float>::quiet_NaN();
     EXPECT_EQ(QuantizeMorton(nan), 0u);
     EXPECT_EQ(QuantizeMorton(-3), 0u);
     EXPECT_EQ(QuantizeMorton(1024), 1023u);
     EXPECT_EQ(QuantizeMorton(Infinity), 1023u);
     EXPECT_EQ(QuantizeMorton(511.9f), 511u);
-    EXPECT_EQ(EncodeMorton3(Vector3f(1024, 1024, 1024)), (1u << 30) - 1);
-    EXPECT_EQ(EncodeMorton3(Vector3f(-1, nan, 2000)), 0x24924924u);
+    EXPECT_EQ(ex::EncodeMorton3(Vector3f(1024, 1024, 1024)), (1u << 30) - 1);
+    EXPECT_EQ(ex::EncodeMorton3(Vector3f(-1, nan, 2000)), 0x24924924u);
 }
 
-TEST(Ex6_13_HLBVH, RandomScenes) {
+EXERCISE_TEST(Ex6_13_HLBVH, RandomScenes) {
     RunRandomScenes(HLBVHSet, 602, kExerciseRandomScenes);
 }
 
-TEST(Ex6_13_HLBVH, DegenerateScenes) {
+EXERCISE_TEST(Ex6_13_HLBVH, DegenerateScenes) {
     CheckOnePrimitive(HLBVHSet);
     CheckAllCentroidsEqual(HLBVHSet);
     CheckZeroExtentBoxes(HLBVHSet);
@@ -1305,39 +1379,46 @@ TEST(Ex6_13_HLBVH, DegenerateScenes) {
 // Scenes of up to a few thousand boxes, whose codes differ in every group
 // of bits that a pass of the radix sort handles, and scenes where many
 // codes coincide: the primitives of every tree must be in code order.
-TEST(Ex6_13_HLBVH, PrimitivesAreInMortonOrder) {
-    std::mt19937_64 rng(6131);
+EXERCISE_TEST(Ex6_13_HLBVH, PrimitivesAreInMortonOrder) {
+    std::mt19937_64 rng(calls::Seed(6131));
+    const int scenes = calls::Cases(60, 30);
     int distinct = 0;
-    for (int scene = 0; scene < 60; ++scene) {
+    for (int sceneIndex = 0; sceneIndex < scenes; ++sceneIndex) {
         int n = 1 + int(rng() % 100);
-        if (scene % 4 == 0) n += int(rng() % 3000);
-        Prims prims = RandomBoxes(rng, n);
-        if (scene % 3 == 0) std::reverse(prims.begin(), prims.end());
+        if (sceneIndex % 4 == 0) n += int(rng() % 3000);
+        Scene boxes = RandomBoxes(rng, n);
+        if (sceneIndex % 3 == 0) {
+            // The same boxes in reverse order.
+            Scene reversed;
+            for (int k = n - 1; k >= 0; --k)
+                reversed.AddBox(boxes.prims[k]->WorldBound());
+            boxes = reversed;
+        }
         for (int leafSize : {1, 4, 255}) {
-            BVHAccel bvh(prims, leafSize, SplitMethod::HLBVH);
-            CheckStructure(bvh, prims);
-            std::string name = "scene " + std::to_string(scene) + ", " +
+            ex::BVHAccel bvh(boxes, leafSize, SplitMethod::HLBVH);
+            CheckStructure(bvh, boxes.prims);
+            std::string name = "scene " + std::to_string(sceneIndex) + ", " +
                                std::to_string(n) + " boxes, maxPrimsInNode " +
                                std::to_string(leafSize);
             distinct += CheckMortonOrder(bvh, name.c_str());
             if (::testing::Test::HasFailure()) return;
         }
     }
-    EXPECT_GT(distinct, 10000);
+    EXPECT_GT(distinct, 10000 * scenes / 60);
 }
 
 // ---------------------------------------------------------------------------
 // Exercise 6.14: near child first.
 
-TEST(Ex6_14_Traversal, RandomScenes) {
-    RunRandomScenes(kTraversalSet, 605, kExerciseRandomScenes);
+EXERCISE_TEST(Ex6_14_Traversal, RandomScenes) {
+    RunRandomScenes(TraversalSet, 605, kExerciseRandomScenes);
 }
 
-TEST(Ex6_14_Traversal, DegenerateScenes) {
-    CheckAllCentroidsEqual(kTraversalSet);
-    CheckZeroExtentBoxes(kTraversalSet);
-    CheckNaNAndInfiniteBounds(kTraversalSet);
-    CheckExponentiallySpacedCentroids(kTraversalSet);
+EXERCISE_TEST(Ex6_14_Traversal, DegenerateScenes) {
+    CheckAllCentroidsEqual(TraversalSet);
+    CheckZeroExtentBoxes(TraversalSet);
+    CheckNaNAndInfiniteBounds(TraversalSet);
+    CheckExponentiallySpacedCentroids(TraversalSet);
 }
 
 // Unit cubes in a row along an axis, 2 apart, each a primitive of a tree
@@ -1347,24 +1428,23 @@ TEST(Ex6_14_Traversal, DegenerateScenes) {
 // The other order tests every cube. Only the first cube is solid, so that
 // IntersectP() too tests more than one cube in the wrong order. The rays
 // drift slowly across the other two axes, in every combination of signs.
-TEST(Ex6_14_Traversal, NearChildFirstOnRowsOfCubes) {
+EXERCISE_TEST(Ex6_14_Traversal, NearChildFirstOnRowsOfCubes) {
     std::vector<int> log;
     for (int n : {2, 5, 16}) {
         for (int axis = 0; axis < 3; ++axis) {
             for (int sign : {1, -1}) {
                 int nearest = sign > 0 ? 0 : n - 1;
-                Prims prims;
+                Scene cubes;
                 for (int i = 0; i < n; ++i) {
                     Point3f lo(0, 0, 0);
                     lo[axis] = Float(2 * i);
                     Point3f hi = lo + Vector3f(1, 1, 1);
-                    prims.push_back(std::make_shared<BoxPrimitive>(
-                        Bounds3f(lo, hi), i == nearest, &log, i));
+                    cubes.AddBox(Bounds3f(lo, hi), i == nearest, &log, i);
                 }
                 for (SplitMethod m :
                      {SplitMethod::Middle, SplitMethod::EqualCounts}) {
-                    BVHAccel bvh(prims, 1, m);
-                    CheckStructure(bvh, prims);
+                    ex::BVHAccel bvh(cubes, 1, m);
+                    CheckStructure(bvh, cubes.prims);
                     for (int drift = 0; drift < 4; ++drift) {
                         Point3f o(0.5f, 0.5f, 0.5f);
                         o[axis] = sign > 0 ? Float(-5) : Float(2 * n + 4);
@@ -1380,7 +1460,7 @@ TEST(Ex6_14_Traversal, NearChildFirstOnRowsOfCubes) {
                         log.clear();
                         SurfaceInteraction si;
                         ASSERT_TRUE(bvh.Intersect(ray, &si));
-                        EXPECT_EQ(si.primitive, prims[nearest].get());
+                        EXPECT_EQ(si.primitive, cubes.prims[nearest].get());
                         EXPECT_EQ(log, std::vector<int>{nearest})
                             << "Intersect() tested these cubes";
                         log.clear();
@@ -1396,18 +1476,19 @@ TEST(Ex6_14_Traversal, NearChildFirstOnRowsOfCubes) {
 
 // The fast BVH over triangles gives bit for bit the hits of BVHAccel, on a
 // closed mesh (a subdivided octahedron) and rays from all directions.
-TEST(Ex6_14_Traversal, SameHitsAsFastBVHAccelOnAClosedMesh) {
+EXERCISE_TEST(Ex6_14_Traversal, SameHitsAsFastBVHAccelOnAClosedMesh) {
     std::vector<Point3f> p;
     std::vector<int> idx;
     ClosedMesh(5, &p, &idx);
     Scene scene;
     scene.AddTriangles(p, idx);
-    std::mt19937_64 rng(615);
+    std::mt19937_64 rng(calls::Seed(615));
+    const int rays = calls::Cases(20000, 4000);
     for (SplitMethod m : {SplitMethod::Middle, SplitMethod::EqualCounts}) {
-        BVHAccel bvh(scene.prims, 4, m);
+        ex::BVHAccel bvh(scene, 4, m);
         FastBVHAccel fast(scene.prims, 8, m);
         int hits = 0;
-        for (int i = 0; i < 20000; ++i) {
+        for (int i = 0; i < rays; ++i) {
             Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 3);
             Ray ray(o, RandomPoint(rng, Point3f(0, 0, 0), 0.5) - o);
             if (i % 3 == 0) ray.d = RandomDirection(rng);
@@ -1423,7 +1504,7 @@ TEST(Ex6_14_Traversal, SameHitsAsFastBVHAccelOnAClosedMesh) {
             }
         }
         // Rays aimed near the origin hit, unless they start inside.
-        EXPECT_GT(hits, 10000);
+        EXPECT_GT(hits, rays / 2);
     }
 }
 

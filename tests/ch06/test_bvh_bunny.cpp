@@ -1,10 +1,12 @@
 // Chapter 6: the Stanford bunny of data/bunny.ply, subdivided in code, traced
 // by every BVH and by brute force on a subset of camera and incoherent rays.
 // The suites Ex6_12_SAHBunny, Ex6_13_HLBVHBunny and Ex6_14_TraversalBunny
-// test the chapter's graded exercises on it; BunnyTest uses no exercise's
+// test the chapter's graded exercises on it, through the exercise calls (the
+// worker gets the subdivided mesh as values); BunnyTest uses no exercise's
 // code (test_bvh.cpp explains which accelerators that leaves).
 
 #include "bvh_checks.h"
+#include "exercise_calls.h"
 #include "lrt/lrt.h"
 
 #include <gtest/gtest.h>
@@ -29,8 +31,10 @@ using SplitMethod = BVHAccel::SplitMethod;
 
 namespace {
 
-constexpr int kCameraRays = 1600;      // a 40 x 40 image
-constexpr int kIncoherentRays = 1600;
+// A 40 x 40 image and as many incoherent rays; graded, where every ray
+// crosses to the worker, a 20 x 20 image and 400.
+const int kCameraResolution = calls::Cases(40, 20);
+const int kIncoherentRays = calls::Cases(1600, 400);
 const Float kTieTolerance = 256 * std::numeric_limits<Float>::epsilon();
 
 // The tests run from the repository root; LRT_DATA_DIR overrides.
@@ -70,11 +74,6 @@ void Subdivide(PlyMesh *m) {
     m->vertexIndices = out;
 }
 
-struct Bunny {
-    Transform identity;
-    std::vector<std::shared_ptr<Primitive>> prims;
-    Bounds3f bounds;
-};
 
 std::vector<Ray> MakeRays(const Bounds3f &b) {
     std::vector<Ray> rays;
@@ -87,7 +86,7 @@ std::vector<Ray> MakeRays(const Bounds3f &b) {
     Vector3f right = Normalize(Cross(fwd, Vector3f(0, 1, 0)));
     Vector3f up = Cross(right, fwd);
     double tanHalf = std::tan(std::asin(0.8 / 3));
-    int res = int(std::sqrt(double(kCameraRays)));
+    int res = kCameraResolution;
     for (int y = 0; y < res; ++y)
         for (int x = 0; x < res; ++x) {
             Float sx = Float((2 * (x + 0.5) / res - 1) * tanHalf);
@@ -96,7 +95,7 @@ std::vector<Ray> MakeRays(const Bounds3f &b) {
         }
     // Incoherent rays: from a sphere around the bunny to random points in
     // its box.
-    std::mt19937_64 rng(621);
+    std::mt19937_64 rng(calls::Seed(621));
     std::uniform_real_distribution<double> u(0, 1);
     for (int i = 0; i < kIncoherentRays; ++i) {
         double z = 1 - 2 * u(rng), phi = 2 * Pi * u(rng);
@@ -112,158 +111,156 @@ std::vector<Ray> MakeRays(const Bounds3f &b) {
     return rays;
 }
 
-class BunnyTest : public ::testing::Test {
-  protected:
-    static void SetUpTestSuite() {
+// The subdivided bunny, its rays, and brute force's closest hit of each
+// ray, made once (they depend on no exercise); null if data/bunny.ply is
+// not found.
+struct Bunny {
+    int baseTriangles;
+    ex::Scene scene;
+    std::vector<Ray> rays;
+    std::vector<Float> oracleT;
+};
+
+const Bunny *TheBunny() {
+    static const Bunny *bunny = [] {
         std::string path = FindBunny();
-        if (path.empty()) return;
+        if (path.empty()) return static_cast<Bunny *>(nullptr);
         PlyMesh m = ReadPly(path);
-        baseTriangles = m.nTriangles();
+        Bunny *b = new Bunny;
+        b->baseTriangles = m.nTriangles();
         Subdivide(&m);
-        bunny = new Bunny;
-        auto shapes = CreateTriangleMesh(
-            &bunny->identity, &bunny->identity, false, m.nTriangles(),
-            m.vertexIndices.data(), m.nVertices(), m.p.data(), nullptr,
-            nullptr, nullptr);
-        for (auto &s : shapes) {
-            bunny->prims.push_back(std::make_shared<GeometricPrimitive>(s));
-            bunny->bounds = Union(bunny->bounds, s->WorldBound());
-        }
-        rays = new std::vector<Ray>(MakeRays(bunny->bounds));
+        b->scene.AddTriangles(m.p, m.vertexIndices);
+        b->rays = MakeRays(b->scene.bounds);
         // Brute force: every triangle, each with the ray's full extent.
-        oracleT = new std::vector<Float>;
-        for (const Ray &ray : *rays) {
+        for (const Ray &ray : b->rays) {
             Float tMin = Infinity;
-            for (auto &p : bunny->prims) {
+            for (auto &p : b->scene.prims) {
                 Ray r = ray;
                 SurfaceInteraction si;
                 if (p->Intersect(r, &si)) tMin = std::min(tMin, r.tMax);
             }
-            oracleT->push_back(tMin);
+            b->oracleT.push_back(tMin);
         }
-    }
-    static void TearDownTestSuite() {
-        delete bunny;
-        delete rays;
-        delete oracleT;
-        bunny = nullptr;
-        rays = nullptr;
-        oracleT = nullptr;
-    }
-    static Bunny *bunny;
-    static int baseTriangles;
-    static std::vector<Ray> *rays;
-    static std::vector<Float> *oracleT;
+        return b;
+    }();
+    return bunny;
+}
 
-    void Check(const Primitive &accel, const char *name) {
-        ASSERT_NE(bunny, nullptr) << "data/bunny.ply not found (set "
-                                     "LRT_DATA_DIR to the data directory)";
-        int hits = 0, oracleHits = 0, failures = 0;
-        for (size_t i = 0; i < rays->size(); ++i) {
-            Ray ray = (*rays)[i];
-            SurfaceInteraction si;
-            bool hit = accel.Intersect(ray, &si);
-            Float t = (*oracleT)[i];
-            hits += hit;
-            oracleHits += t < Infinity;
-            bool ok = hit == (t < Infinity) &&
-                      accel.IntersectP((*rays)[i]) == hit;
-            if (ok && hit) {
-                Ray r = (*rays)[i];
-                SurfaceInteraction s2;
-                // The primitive reported is hit at the distance reported,
-                // which is the closest, up to ties.
-                ok = si.primitive && si.primitive->Intersect(r, &s2) &&
-                     r.tMax == ray.tMax && ray.tMax >= t &&
-                     ray.tMax <= t * (1 + kTieTolerance);
-            }
-            if (!ok && failures++ < 10)
-                ADD_FAILURE() << name << ": ray " << i << " " << (*rays)[i]
-                              << " hit " << hit << " t " << ray.tMax
-                              << ", brute force t " << t;
+#define ASSERT_BUNNY(bunny)                                             \
+    ASSERT_NE(bunny, nullptr) << "data/bunny.ply not found (set "       \
+                                 "LRT_DATA_DIR to the data directory)"
+
+// Traces the bunny's rays with an accelerator and compares with brute
+// force.
+void Check(const Bunny &bunny, const Primitive &accel, const char *name) {
+    int hits = 0, oracleHits = 0, failures = 0;
+    for (size_t i = 0; i < bunny.rays.size(); ++i) {
+        Ray ray = bunny.rays[i];
+        SurfaceInteraction si;
+        bool hit = accel.Intersect(ray, &si);
+        Float t = bunny.oracleT[i];
+        hits += hit;
+        oracleHits += t < Infinity;
+        bool ok = hit == (t < Infinity) &&
+                  accel.IntersectP(bunny.rays[i]) == hit;
+        if (ok && hit) {
+            Ray r = bunny.rays[i];
+            SurfaceInteraction s2;
+            // The primitive reported is hit at the distance reported,
+            // which is the closest, up to ties.
+            ok = si.primitive && si.primitive->Intersect(r, &s2) &&
+                 r.tMax == ray.tMax && ray.tMax >= t &&
+                 ray.tMax <= t * (1 + kTieTolerance);
         }
-        EXPECT_EQ(failures, 0) << name;
-        EXPECT_EQ(hits, oracleHits) << name;
-        // The camera sees the bunny, and incoherent rays aimed into its
-        // box hit it about half of the time.
-        EXPECT_GT(hits, int(rays->size()) / 4) << name;
+        if (!ok && failures++ < 10)
+            ADD_FAILURE() << name << ": ray " << i << " " << bunny.rays[i]
+                          << " hit " << hit << " t " << ray.tMax
+                          << ", brute force t " << t;
     }
-};
-
-Bunny *BunnyTest::bunny = nullptr;
-int BunnyTest::baseTriangles = 0;
-std::vector<Ray> *BunnyTest::rays = nullptr;
-std::vector<Float> *BunnyTest::oracleT = nullptr;
+    EXPECT_EQ(failures, 0) << name;
+    EXPECT_EQ(hits, oracleHits) << name;
+    // The camera sees the bunny, and incoherent rays aimed into its box hit
+    // it about half of the time.
+    EXPECT_GT(hits, int(bunny.rays.size()) / 4) << name;
+}
 
 }  // namespace
 
-TEST_F(BunnyTest, BaseMeshIsThePackagedBunny) {
-    ASSERT_NE(bunny, nullptr) << "data/bunny.ply not found";
-    EXPECT_EQ(baseTriangles, 3674);
-    EXPECT_EQ(bunny->prims.size(), 4u * 3674u);
+TEST(BunnyTest, BaseMeshIsThePackagedBunny) {
+    const Bunny *bunny = TheBunny();
+    ASSERT_BUNNY(bunny);
+    EXPECT_EQ(bunny->baseTriangles, 3674);
+    EXPECT_EQ(bunny->scene.prims.size(), 4u * 3674u);
 }
 
 // FastBVHAccel's own SAH builder; BVHAccel's is Exercise 6.12's.
-TEST_F(BunnyTest, SAH) {
-    ASSERT_NE(bunny, nullptr);
-    Check(FastBVHAccel(bunny->prims, 8, SplitMethod::SAH), "FastBVHAccel SAH");
+TEST(BunnyTest, SAH) {
+    const Bunny *bunny = TheBunny();
+    ASSERT_BUNNY(bunny);
+    Check(*bunny, FastBVHAccel(bunny->scene.prims, 8, SplitMethod::SAH),
+          "FastBVHAccel SAH");
 }
 
 // BVHAccel's trees, traced by a FastBVHAccel that adopts them (BVHAccel's
 // own traversal is Exercise 6.14's).
-TEST_F(BunnyTest, Middle) {
-    ASSERT_NE(bunny, nullptr);
-    Check(FastBVHAccel(BVHAccel(bunny->prims, 4, SplitMethod::Middle)),
+TEST(BunnyTest, Middle) {
+    const Bunny *bunny = TheBunny();
+    ASSERT_BUNNY(bunny);
+    const auto &prims = bunny->scene.prims;
+    Check(*bunny, FastBVHAccel(BVHAccel(prims, 4, SplitMethod::Middle)),
           "FastBVHAccel from BVHAccel Middle");
-    Check(FastBVHAccel(bunny->prims, 8, SplitMethod::Middle),
+    Check(*bunny, FastBVHAccel(prims, 8, SplitMethod::Middle),
           "FastBVHAccel Middle");
 }
 
-TEST_F(BunnyTest, EqualCounts) {
-    ASSERT_NE(bunny, nullptr);
-    Check(FastBVHAccel(BVHAccel(bunny->prims, 4, SplitMethod::EqualCounts)),
+TEST(BunnyTest, EqualCounts) {
+    const Bunny *bunny = TheBunny();
+    ASSERT_BUNNY(bunny);
+    const auto &prims = bunny->scene.prims;
+    Check(*bunny, FastBVHAccel(BVHAccel(prims, 4, SplitMethod::EqualCounts)),
           "FastBVHAccel from BVHAccel EqualCounts");
-    Check(FastBVHAccel(bunny->prims, 8, SplitMethod::EqualCounts),
+    Check(*bunny, FastBVHAccel(prims, 8, SplitMethod::EqualCounts),
           "FastBVHAccel EqualCounts");
 }
 
-// The exercises' tests on the bunny: the same fixture under the exercises'
-// suite names.
-class Ex6_12_SAHBunny : public BunnyTest {};
-class Ex6_13_HLBVHBunny : public BunnyTest {};
-class Ex6_14_TraversalBunny : public BunnyTest {};
+// The exercises' tests on the bunny, which the worker gets as values.
 
 // BVHAccel's SAH tree, four primitives per leaf as in the benchmark: every
 // decision follows the cost model, and the tree, traced without BVHAccel's
 // traversal, finds the hits that brute force finds.
-TEST_F(Ex6_12_SAHBunny, TreeFollowsTheCostModel) {
-    ASSERT_NE(bunny, nullptr);
+EXERCISE_TEST(Ex6_12_SAHBunny, TreeFollowsTheCostModel) {
+    const Bunny *bunny = TheBunny();
+    ASSERT_BUNNY(bunny);
     for (int leafSize : {1, 4}) {
-        auto bvh = std::make_shared<BVHAccel>(bunny->prims, leafSize,
-                                              SplitMethod::SAH);
+        auto bvh = std::make_shared<ex::BVHAccel>(bunny->scene, leafSize,
+                                                  SplitMethod::SAH);
         SAHCheck c = CheckSAHChoices(*bvh, "the bunny's SAH tree");
-        EXPECT_GT(c.decisions, int(bunny->prims.size()) / 8);
-        Check(TreeWalker(bvh), "BVHAccel SAH traced by TreeWalker");
+        EXPECT_GT(c.decisions, int(bunny->scene.prims.size()) / 8);
+        Check(*bunny, TreeWalker(bvh), "BVHAccel SAH traced by TreeWalker");
     }
 }
 
 // BVHAccel's HLBVH tree: its primitives are in Morton order, and it finds
 // the hits that brute force finds, traced without BVHAccel's traversal and
 // by FastBVHAccel, which builds with BVHAccel's HLBVH builder.
-TEST_F(Ex6_13_HLBVHBunny, TreeFollowsTheCurve) {
-    ASSERT_NE(bunny, nullptr);
-    auto bvh = std::make_shared<BVHAccel>(bunny->prims, 4, SplitMethod::HLBVH);
+EXERCISE_TEST(Ex6_13_HLBVHBunny, TreeFollowsTheCurve) {
+    const Bunny *bunny = TheBunny();
+    ASSERT_BUNNY(bunny);
+    auto bvh = std::make_shared<ex::BVHAccel>(bunny->scene, 4,
+                                              SplitMethod::HLBVH);
     EXPECT_GT(CheckMortonOrder(*bvh, "the bunny's HLBVH tree"),
-              int(bunny->prims.size()) / 2);
-    Check(TreeWalker(bvh), "BVHAccel HLBVH traced by TreeWalker");
-    Check(FastBVHAccel(bunny->prims, 8, SplitMethod::HLBVH),
+              int(bunny->scene.prims.size()) / 2);
+    Check(*bunny, TreeWalker(bvh), "BVHAccel HLBVH traced by TreeWalker");
+    Check(*bunny, ex::FastBVHAccel(bunny->scene, 8, SplitMethod::HLBVH),
           "FastBVHAccel HLBVH");
 }
 
-TEST_F(Ex6_14_TraversalBunny, MiddleAndEqualCounts) {
-    ASSERT_NE(bunny, nullptr);
-    Check(BVHAccel(bunny->prims, 4, SplitMethod::Middle), "BVHAccel Middle");
-    Check(BVHAccel(bunny->prims, 4, SplitMethod::EqualCounts),
+EXERCISE_TEST(Ex6_14_TraversalBunny, MiddleAndEqualCounts) {
+    const Bunny *bunny = TheBunny();
+    ASSERT_BUNNY(bunny);
+    Check(*bunny, ex::BVHAccel(bunny->scene, 4, SplitMethod::Middle),
+          "BVHAccel Middle");
+    Check(*bunny, ex::BVHAccel(bunny->scene, 4, SplitMethod::EqualCounts),
           "BVHAccel EqualCounts");
 }
 
@@ -274,17 +271,19 @@ TEST_F(Ex6_14_TraversalBunny, MiddleAndEqualCounts) {
 // (which costs two box tests per node to decide); pbrt's order tests about
 // as many. Visiting the first or the second child first, whatever the
 // ray's direction, tests about twice and two and a half times as many.
-TEST_F(Ex6_14_TraversalBunny, TestsFewTriangles) {
-    ASSERT_NE(bunny, nullptr);
+// (The worker reports the triangles its traversal tested.)
+EXERCISE_TEST(Ex6_14_TraversalBunny, TestsFewTriangles) {
+    const Bunny *bunny = TheBunny();
+    ASSERT_BUNNY(bunny);
     int64_t count = 0;
-    std::vector<std::shared_ptr<Primitive>> counted;
-    for (const auto &p : bunny->prims)
-        counted.push_back(std::make_shared<CountingPrimitive>(p, &count));
+    ex::Scene counted = bunny->scene;
+    for (auto &p : counted.prims)
+        p = std::make_shared<CountingPrimitive>(p, &count);
     for (SplitMethod m : {SplitMethod::Middle, SplitMethod::EqualCounts}) {
-        auto bvh = std::make_shared<BVHAccel>(counted, 1, m);
+        auto bvh = std::make_shared<ex::BVHAccel>(counted, 1, m);
         TreeWalker nearest(bvh, TreeWalker::Order::Distance);
         int64_t tested = 0, yardstick = 0;
-        for (const Ray &ray : *rays) {
+        for (const Ray &ray : bunny->rays) {
             Ray r1 = ray, r2 = ray;
             SurfaceInteraction s1, s2;
             count = 0;

@@ -1,0 +1,637 @@
+// Chapter 6's exercise calls (tests/calls/calls.h): the tests of ex-6.12,
+// ex-6.13 and ex-6.14 reach BVHAccel's builders and traversal, and the Morton
+// code functions, only through these.
+//
+// A test describes its scene as values: an ex::Scene holds the test's own
+// primitives (for its oracles) and their description (a SceneValue), from
+// which the worker makes copies of its own. BuildBVH builds an accelerator
+// over the copies, keeps it, and answers with its tree (BVHAccel's nodes), the
+// order of its primitives as indices into the scene, and its statistics.
+// TraceRay traces a ray through a kept accelerator and answers with the hit,
+// its distance, the index of the primitive hit and, if asked, the indices of
+// the primitives tested, in order.
+//
+// ex::BVHAccel and ex::FastBVHAccel turn these into Primitives with the
+// accessors of lrt::BVHAccel, so that the tests read as before: they map the
+// indices back to the test's own primitives and refuse (throw on) an answer
+// whose indices do not describe a tree over the scene.
+
+#ifndef LRT_TESTS_CH06_EXERCISE_CALLS_H
+#define LRT_TESTS_CH06_EXERCISE_CALLS_H
+
+#include "calls/calls.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace lrt {
+
+// ---------------------------------------------------------------------------
+// Primitives of test scenes, made alike by the tests and by the worker
+
+namespace ex {
+
+// A primitive of a test that keeps note of the tests of it (in a log, in a
+// count). When the worker's traversal tests its copy of the primitive, the
+// adapters below note the test here.
+class NotesTests {
+  public:
+    virtual ~NotesTests() = default;
+    virtual bool KeepsNotes() const = 0;
+    virtual void NoteTest() const = 0;
+};
+
+// A box as a primitive. A solid box is hit where the ray enters it (a ray that
+// starts inside misses it); a hollow one is never hit. With a log, every call
+// of Intersect() or IntersectP() appends the box's id to it.
+class BoxPrimitive : public Primitive, public NotesTests {
+  public:
+    explicit BoxPrimitive(const Bounds3f &b, bool solid = true,
+                          std::vector<int> *log = nullptr, int id = 0)
+        : b(b), solid(solid), log(log), id(id) {}
+    Bounds3f WorldBound() const override { return b; }
+    bool Intersect(const Ray &r, SurfaceInteraction *isect) const override {
+        Float t;
+        if (!Hit(r, &t)) return false;
+        r.tMax = t;
+        isect->primitive = this;
+        return true;
+    }
+    bool IntersectP(const Ray &r) const override {
+        Float t;
+        return Hit(r, &t);
+    }
+    bool KeepsNotes() const override { return log != nullptr; }
+    void NoteTest() const override {
+        if (log) log->push_back(id);
+    }
+
+  private:
+    bool Hit(const Ray &r, Float *t) const {
+        NoteTest();
+        Float t0, t1;
+        if (!solid || !b.IntersectP(r, &t0, &t1)) return false;
+        *t = t0;
+        return t0 > 0 && t0 < r.tMax;
+    }
+    Bounds3f b;
+    bool solid;
+    std::vector<int> *log;
+    int id;
+};
+
+// A primitive whose bounds are whatever the test says (NaN, infinite,
+// empty), and which every ray with tMax >= 1 hits at t = 1: an accelerator
+// that leaves it out must never report it.
+class OddBoundsPrimitive : public Primitive {
+  public:
+    explicit OddBoundsPrimitive(const Bounds3f &b) : b(b) {}
+    Bounds3f WorldBound() const override { return b; }
+    bool Intersect(const Ray &r, SurfaceInteraction *isect) const override {
+        if (r.tMax < 1) return false;
+        r.tMax = 1;
+        isect->primitive = this;
+        return true;
+    }
+    bool IntersectP(const Ray &r) const override { return r.tMax >= 1; }
+
+  private:
+    Bounds3f b;
+};
+
+}  // namespace ex
+
+// ---------------------------------------------------------------------------
+// Scenes as values
+
+// The kinds of items of a scene.
+enum SceneItem : uint8_t {
+    kBoxItem,             // an ex::BoxPrimitive
+    kSphereItem,          // a GeometricPrimitive of a Sphere
+    kDiskItem,            // a GeometricPrimitive of a Disk
+    kMeshItem,            // GeometricPrimitives of a mesh's Triangles
+    kOddBoundsItem,       // an ex::OddBoundsPrimitive
+    kEmptyAggregateItem,  // a BVHAccel over no primitives
+};
+
+struct BoxValue {
+    Bounds3f bounds;
+    bool solid;
+    LRT_FIELDS(bounds, solid)
+};
+
+// A sphere's or a disk's constructor arguments. args: a sphere's radius,
+// zMin, zMax and phiMax, or a disk's height, radius, innerRadius and phiMax.
+struct QuadricValue {
+    Transform objectToWorld, worldToObject;
+    bool reverseOrientation;
+    std::array<Float, 4> args;
+    LRT_FIELDS(objectToWorld, worldToObject, reverseOrientation, args)
+};
+
+// A triangle mesh in world space (the identity transformation).
+struct MeshValue {
+    std::vector<Point3f> p;
+    std::vector<int> indices;
+    LRT_FIELDS(p, indices)
+};
+
+// A scene: its items in order, each taking the next value of its kind (a
+// mesh adds all its triangles). Primitive k of the scene is the k-th
+// primitive made so.
+struct SceneValue {
+    std::vector<uint8_t> items;
+    std::vector<BoxValue> boxes;
+    std::vector<QuadricValue> quadrics;
+    std::vector<MeshValue> meshes;
+    std::vector<Bounds3f> oddBounds;
+    LRT_FIELDS(items, boxes, quadrics, meshes, oddBounds)
+};
+
+// What the worker answers about an accelerator it built and keeps.
+struct BuiltBVH {
+    calls::Handle handle;
+    std::vector<LinearBVHNode> nodes;  // BVHAccel's tree; none for FastBVHAccel
+    std::vector<int> order;  // Primitives(), as indices into the scene
+    BVHStats stats;
+    int maxPrimsInNode;
+    Bounds3f worldBound;
+    LRT_FIELDS(handle, nodes, order, stats, maxPrimsInNode, worldBound)
+};
+
+// Which accelerator BuildBVH builds, and which traversal TraceRay uses.
+enum class Accelerator : uint8_t { BVHAccel, FastBVHAccel };
+enum class Traversal : uint8_t {
+    Own,                    // the accelerator's own Intersect()/IntersectP()
+    AdoptedByFastBVHAccel,  // a FastBVHAccel that adopts a BVHAccel's tree
+};
+
+// What TraceRay answers: for Intersect(), whether the ray hit, its tMax
+// afterwards and the index of the primitive hit (-1 if none is named); for
+// IntersectP(), whether it hit. `tested`: the primitives tested, in order.
+struct TraceResult {
+    bool hit;
+    Float tMax;
+    int primitive;
+    std::vector<int> tested;
+    LRT_FIELDS(hit, tMax, primitive, tested)
+};
+
+namespace calls {
+
+// BVHAccel's node and statistics, member by member.
+inline void Put(Writer &w, const LinearBVHNode &n) {
+    Put(w, n.bounds), Put(w, n.primitivesOffset), Put(w, n.nPrimitives),
+        Put(w, n.axis);
+}
+inline void Get(Reader &r, LinearBVHNode &n) {
+    Get(r, n.bounds), Get(r, n.primitivesOffset), Get(r, n.nPrimitives),
+        Get(r, n.axis);
+}
+inline void Put(Writer &w, const BVHStats &s) {
+    Put(w, s.interiorNodes), Put(w, s.leafNodes), Put(w, s.primitives);
+    Put(w, s.maxDepth), Put(w, s.maxLeafSize), Put(w, s.sahCost);
+}
+inline void Get(Reader &r, BVHStats &s) {
+    Get(r, s.interiorNodes), Get(r, s.leafNodes), Get(r, s.primitives);
+    Get(r, s.maxDepth), Get(r, s.maxLeafSize), Get(r, s.sahCost);
+}
+
+}  // namespace calls
+
+namespace direct {
+
+// The primitives of a sphere, a disk or a mesh; the transformations they
+// point to go into `transforms`.
+inline std::shared_ptr<Primitive> MakeQuadric(
+    uint8_t kind, const QuadricValue &q,
+    std::vector<std::shared_ptr<Transform>> *transforms) {
+    transforms->push_back(std::make_shared<Transform>(q.objectToWorld));
+    const Transform *toWorld = transforms->back().get();
+    transforms->push_back(std::make_shared<Transform>(q.worldToObject));
+    const Transform *toObject = transforms->back().get();
+    const std::array<Float, 4> &a = q.args;
+    std::shared_ptr<Shape> shape;
+    if (kind == kSphereItem)
+        shape = std::make_shared<Sphere>(
+            toWorld, toObject, q.reverseOrientation, a[0], a[1], a[2], a[3]);
+    else
+        shape = std::make_shared<Disk>(toWorld, toObject, q.reverseOrientation,
+                                       a[0], a[1], a[2], a[3]);
+    return std::make_shared<GeometricPrimitive>(shape);
+}
+inline std::vector<std::shared_ptr<Primitive>> MakeMesh(
+    const MeshValue &m, std::vector<std::shared_ptr<Transform>> *transforms) {
+    transforms->push_back(std::make_shared<Transform>());
+    const Transform *id = transforms->back().get();
+    auto shapes = CreateTriangleMesh(id, id, false, int(m.indices.size() / 3),
+                                     m.indices.data(), int(m.p.size()),
+                                     m.p.data(), nullptr, nullptr, nullptr);
+    std::vector<std::shared_ptr<Primitive>> prims;
+    for (auto &s : shapes)
+        prims.push_back(std::make_shared<GeometricPrimitive>(s));
+    return prims;
+}
+
+// A primitive of the worker's scene that writes its index into a log at
+// every test. (Only where the test asks for the log: FastBVHAccel treats
+// triangles specially only when they are plain GeometricPrimitives.)
+class LoggedPrimitive : public Primitive {
+  public:
+    LoggedPrimitive(std::shared_ptr<Primitive> p, int index,
+                    std::vector<int> *log)
+        : p(std::move(p)), index(index), log(log) {}
+    Bounds3f WorldBound() const override { return p->WorldBound(); }
+    bool Intersect(const Ray &r, SurfaceInteraction *isect) const override {
+        log->push_back(index);
+        return p->Intersect(r, isect);
+    }
+    bool IntersectP(const Ray &r) const override {
+        log->push_back(index);
+        return p->IntersectP(r);
+    }
+
+  private:
+    std::shared_ptr<Primitive> p;
+    int index;
+    std::vector<int> *log;
+};
+
+// An accelerator that the worker keeps, with the scene it was built over.
+struct KeptAccelerator {
+    std::vector<std::shared_ptr<Transform>> transforms;
+    std::vector<std::shared_ptr<Primitive>> prims;  // in the scene's order
+    std::unordered_map<const Primitive *, int> index;
+    std::vector<int> tested;  // the log of the current query
+    std::shared_ptr<lrt::BVHAccel> bvh;
+    std::shared_ptr<lrt::FastBVHAccel> fast;  // built, or adopting bvh
+
+    int IndexOf(const Primitive *p) const {
+        auto it = index.find(p);
+        return it == index.end() ? -1 : it->second;
+    }
+};
+
+// Makes the scene's primitives (logged, if `log`) into `kept`.
+inline void MakeScene(const SceneValue &scene, bool log,
+                      KeptAccelerator *kept) {
+    size_t box = 0, quadric = 0, mesh = 0, odd = 0;  // the next value of each
+    auto next = [](size_t *i, size_t n) {
+        if (*i >= n)
+            throw std::invalid_argument("a scene item without a value");
+        return (*i)++;
+    };
+    std::vector<std::shared_ptr<Primitive>> made;
+    for (uint8_t kind : scene.items) {
+        if (kind == kBoxItem) {
+            const BoxValue &b = scene.boxes[next(&box, scene.boxes.size())];
+            made.push_back(
+                std::make_shared<ex::BoxPrimitive>(b.bounds, b.solid));
+        } else if (kind == kSphereItem || kind == kDiskItem) {
+            made.push_back(MakeQuadric(
+                kind, scene.quadrics[next(&quadric, scene.quadrics.size())],
+                &kept->transforms));
+        } else if (kind == kMeshItem) {
+            for (auto &p :
+                 MakeMesh(scene.meshes[next(&mesh, scene.meshes.size())],
+                          &kept->transforms))
+                made.push_back(p);
+        } else if (kind == kOddBoundsItem) {
+            made.push_back(std::make_shared<ex::OddBoundsPrimitive>(
+                scene.oddBounds[next(&odd, scene.oddBounds.size())]));
+        } else if (kind == kEmptyAggregateItem) {
+            made.push_back(std::make_shared<lrt::BVHAccel>(
+                std::vector<std::shared_ptr<Primitive>>()));
+        } else {
+            throw std::invalid_argument("a scene item of unknown kind");
+        }
+    }
+    for (size_t k = 0; k < made.size(); ++k) {
+        kept->index[made[k].get()] = int(k);
+        if (log) {
+            made[k] = std::make_shared<LoggedPrimitive>(made[k], int(k),
+                                                        &kept->tested);
+            kept->index[made[k].get()] = int(k);
+        }
+        kept->prims.push_back(made[k]);
+    }
+}
+
+// Builds a BVHAccel or a FastBVHAccel over the scene and keeps it.
+inline BuiltBVH BuildBVH(SceneValue scene, int maxPrimsInNode,
+                         lrt::BVHAccel::SplitMethod method,
+                         Accelerator accelerator, bool log) {
+    auto kept = std::make_shared<KeptAccelerator>();
+    MakeScene(scene, log, kept.get());
+    BuiltBVH built;
+    const std::vector<std::shared_ptr<Primitive>> *ordered;
+    if (accelerator == Accelerator::BVHAccel) {
+        kept->bvh = std::make_shared<lrt::BVHAccel>(kept->prims, maxPrimsInNode,
+                                                    method);
+        built.nodes = kept->bvh->Nodes();
+        ordered = &kept->bvh->Primitives();
+        built.stats = kept->bvh->Stats();
+        built.maxPrimsInNode = kept->bvh->MaxPrimsInNode();
+        built.worldBound = kept->bvh->WorldBound();
+    } else {
+        kept->fast = std::make_shared<lrt::FastBVHAccel>(
+            kept->prims, maxPrimsInNode, method);
+        ordered = &kept->fast->Primitives();
+        built.stats = kept->fast->Stats();
+        built.maxPrimsInNode = kept->fast->MaxPrimsInNode();
+        built.worldBound = kept->fast->WorldBound();
+    }
+    for (const auto &p : *ordered)
+        built.order.push_back(kept->IndexOf(p.get()));
+    built.handle = calls::Keep(kept);
+    return built;
+}
+
+// Intersect() (or, with anyHit, IntersectP()) of a kept accelerator.
+inline TraceResult TraceRay(calls::Handle accelerator, Traversal traversal,
+                            Ray ray, bool anyHit, bool log) {
+    KeptAccelerator &kept = calls::Find<KeptAccelerator>(accelerator);
+    const Primitive *accel =
+        kept.bvh ? static_cast<const Primitive *>(kept.bvh.get())
+                 : kept.fast.get();
+    if (traversal == Traversal::AdoptedByFastBVHAccel) {
+        if (!kept.bvh) throw std::invalid_argument("no BVHAccel to adopt");
+        if (!kept.fast)
+            kept.fast = std::make_shared<lrt::FastBVHAccel>(*kept.bvh);
+        accel = kept.fast.get();
+    }
+    kept.tested.clear();
+    TraceResult result{false, ray.tMax, -1, {}};
+    if (anyHit) {
+        result.hit = accel->IntersectP(ray);
+    } else {
+        SurfaceInteraction si;
+        result.hit = accel->Intersect(ray, &si);
+        result.tMax = ray.tMax;
+        if (result.hit) result.primitive = kept.IndexOf(si.primitive);
+    }
+    if (log) result.tested = kept.tested;
+    return result;
+}
+
+// The Morton code functions of Section 6.5.
+inline uint32_t LeftShift3(uint32_t x) { return lrt::LeftShift3(x); }
+inline uint32_t EncodeMorton3(Vector3f v) { return lrt::EncodeMorton3(v); }
+
+}  // namespace direct
+}  // namespace lrt
+
+LRT_EXERCISE_CALL(BuildBVH)
+LRT_EXERCISE_CALL(TraceRay)
+LRT_EXERCISE_CALL(LeftShift3)
+LRT_EXERCISE_CALL(EncodeMorton3)
+
+namespace lrt {
+namespace ex {
+
+// A test's scene: its own primitives, for the test's oracles, and their
+// description, from which the worker makes its copies. Primitive k of
+// `prims` is primitive k of the description. A test may replace a primitive
+// of `prims` by one that wraps it (to count its tests, say).
+class Scene {
+  public:
+    std::vector<std::shared_ptr<Primitive>> prims;
+    Bounds3f bounds;  // of the primitives with a finite box
+    SceneValue value;
+
+    void AddBox(const Bounds3f &b, bool solid = true,
+                std::vector<int> *log = nullptr, int id = 0) {
+        value.items.push_back(kBoxItem);
+        value.boxes.push_back({b, solid});
+        Add(std::make_shared<BoxPrimitive>(b, solid, log, id));
+    }
+    void AddSphere(const Transform &objectToWorld,
+                   const Transform &worldToObject, bool reverseOrientation,
+                   Float radius, Float zMin, Float zMax, Float phiMax) {
+        std::array<Float, 4> args = {radius, zMin, zMax, phiMax};
+        AddQuadric(kSphereItem,
+                   {objectToWorld, worldToObject, reverseOrientation, args});
+    }
+    void AddDisk(const Transform &objectToWorld, const Transform &worldToObject,
+                 bool reverseOrientation, Float height, Float radius,
+                 Float innerRadius, Float phiMax) {
+        std::array<Float, 4> args = {height, radius, innerRadius, phiMax};
+        AddQuadric(kDiskItem,
+                   {objectToWorld, worldToObject, reverseOrientation, args});
+    }
+    void AddTriangles(const std::vector<Point3f> &p,
+                      const std::vector<int> &indices) {
+        value.items.push_back(kMeshItem);
+        value.meshes.push_back({p, indices});
+        for (auto &prim : direct::MakeMesh(value.meshes.back(), &transforms))
+            Add(prim);
+    }
+    void AddOddBounds(const Bounds3f &b) {
+        value.items.push_back(kOddBoundsItem);
+        value.oddBounds.push_back(b);
+        Add(std::make_shared<OddBoundsPrimitive>(b));
+    }
+    void AddEmptyAggregate() {
+        value.items.push_back(kEmptyAggregateItem);
+        Add(std::make_shared<lrt::BVHAccel>(
+            std::vector<std::shared_ptr<Primitive>>()));
+    }
+
+  private:
+    void AddQuadric(uint8_t kind, const QuadricValue &q) {
+        value.items.push_back(kind);
+        value.quadrics.push_back(q);
+        Add(direct::MakeQuadric(kind, q, &transforms));
+    }
+    void Add(std::shared_ptr<Primitive> p) {
+        Bounds3f b = p->WorldBound();
+        if (IsFiniteBox(b)) bounds = Union(bounds, b);
+        prims.push_back(std::move(p));
+    }
+    std::vector<std::shared_ptr<Transform>> transforms;
+};
+
+// Whether the worker is to log the tests of its primitives: if some primitive
+// of the test keeps notes of its tests.
+inline bool KeepsNotes(const Scene &scene) {
+    for (const auto &p : scene.prims) {
+        auto notes = dynamic_cast<const NotesTests *>(p.get());
+        if (notes && notes->KeepsNotes()) return true;
+    }
+    return false;
+}
+
+// An accelerator that the worker keeps, seen from the test: its handle and
+// the test's primitives in the scene's order.
+class KeptInWorker {
+  public:
+    KeptInWorker(calls::Handle handle,
+                 const std::vector<std::shared_ptr<Primitive>> &scene, bool log)
+        : handle(std::move(handle)), scene(scene), log(log) {}
+    // The test's primitive of the worker's index k (nullptr for -1).
+    const std::shared_ptr<Primitive> &At(int k) const {
+        static const std::shared_ptr<Primitive> none;
+        if (k == -1) return none;
+        if (k < 0 || k >= int(scene.size()))
+            throw std::runtime_error("the worker names primitive " +
+                                     std::to_string(k) + " of a scene of " +
+                                     std::to_string(scene.size()));
+        return scene[k];
+    }
+    // Intersect() (isect given) or IntersectP() in the worker; notes the
+    // tests of the test's primitives that keep notes.
+    bool Trace(Traversal traversal, const Ray &ray,
+               SurfaceInteraction *isect) const {
+        TraceResult r = ex::TraceRay(handle, traversal, ray, !isect, log);
+        for (int k : r.tested) {
+            auto notes = dynamic_cast<const NotesTests *>(At(k).get());
+            if (notes) notes->NoteTest();
+        }
+        if (isect) {
+            ray.tMax = r.tMax;
+            if (r.hit) isect->primitive = At(r.primitive).get();
+        }
+        return r.hit;
+    }
+
+  private:
+    calls::Handle handle;
+    std::vector<std::shared_ptr<Primitive>> scene;
+    bool log;
+};
+
+// Checks that the worker's nodes are a tree over its primitives, laid out as
+// BVHAccel lays it out (Section 6.3.5): every node reached once from the root,
+// a first child right after its parent and a second child after that, leaves
+// within the primitives, at most maxBVHDepth levels. Throws if not, so that
+// no check ever follows an index out of the arrays or around a cycle.
+inline void CheckIsTree(const std::vector<LinearBVHNode> &nodes,
+                        size_t nPrimitives) {
+    auto refuse = [](int i, const std::string &why) {
+        throw std::runtime_error("the worker's BVH is not a tree: node " +
+                                 std::to_string(i) + " " + why);
+    };
+    std::vector<char> reached(nodes.size(), 0);
+    std::vector<std::pair<int, int>> pending;  // node, depth
+    if (!nodes.empty()) pending.push_back({0, 0});
+    while (!pending.empty()) {
+        auto [i, depth] = pending.back();
+        pending.pop_back();
+        if (reached[i]++) refuse(i, "is reached twice");
+        if (depth > maxBVHDepth) refuse(i, "is deeper than maxBVHDepth");
+        const LinearBVHNode &n = nodes[i];
+        if (n.nPrimitives > 0) {
+            if (n.primitivesOffset < 0 ||
+                size_t(n.primitivesOffset) + n.nPrimitives > nPrimitives)
+                refuse(i, "has primitives outside the array");
+            continue;
+        }
+        if (n.axis > 2)
+            refuse(i, "splits along axis " + std::to_string(n.axis));
+        if (i + 1 >= int(nodes.size()) || n.secondChildOffset <= i + 1 ||
+            n.secondChildOffset >= int(nodes.size()))
+            refuse(i, "has children outside the array or out of order");
+        pending.push_back({i + 1, depth + 1});
+        pending.push_back({n.secondChildOffset, depth + 1});
+    }
+    for (size_t i = 0; i < nodes.size(); ++i)
+        if (!reached[i]) refuse(int(i), "is not reached from the root");
+}
+
+// The worker's BVHAccel over a scene, with lrt::BVHAccel's interface:
+// Primitives() are the test's own, in the tree's order. The scene may go
+// out of scope; its primitives stay.
+class BVHAccel : public Primitive {
+  public:
+    using SplitMethod = lrt::BVHAccel::SplitMethod;
+    explicit BVHAccel(const Scene &scene, int maxPrimsInNode = 1,
+                      SplitMethod splitMethod = SplitMethod::SAH)
+        : built(ex::BuildBVH(scene.value, maxPrimsInNode, splitMethod,
+                             Accelerator::BVHAccel, KeepsNotes(scene))),
+          kept(std::make_shared<KeptInWorker>(built.handle, scene.prims,
+                                              KeepsNotes(scene))) {
+        for (int k : built.order) primitives.push_back(kept->At(k));
+        CheckIsTree(built.nodes, primitives.size());
+    }
+    Bounds3f WorldBound() const override { return built.worldBound; }
+    bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override {
+        return kept->Trace(Traversal::Own, ray, isect);
+    }
+    bool IntersectP(const Ray &ray) const override {
+        return kept->Trace(Traversal::Own, ray, nullptr);
+    }
+    const std::vector<LinearBVHNode> &Nodes() const { return built.nodes; }
+    const std::vector<std::shared_ptr<Primitive>> &Primitives() const {
+        return primitives;
+    }
+    int MaxPrimsInNode() const { return built.maxPrimsInNode; }
+    BVHStats Stats() const { return built.stats; }
+
+    // The same tree, traced by a FastBVHAccel that adopts it in the worker.
+    class Adopted : public Primitive {
+      public:
+        explicit Adopted(const BVHAccel &bvh)
+            : bounds(bvh.WorldBound()), kept(bvh.kept) {}
+        Bounds3f WorldBound() const override { return bounds; }
+        bool Intersect(const Ray &ray,
+                       SurfaceInteraction *isect) const override {
+            return kept->Trace(Traversal::AdoptedByFastBVHAccel, ray, isect);
+        }
+        bool IntersectP(const Ray &ray) const override {
+            return kept->Trace(Traversal::AdoptedByFastBVHAccel, ray, nullptr);
+        }
+
+      private:
+        Bounds3f bounds;
+        std::shared_ptr<const KeptInWorker> kept;
+    };
+
+  private:
+    BuiltBVH built;
+    std::shared_ptr<const KeptInWorker> kept;
+    std::vector<std::shared_ptr<Primitive>> primitives;
+};
+
+// The worker's FastBVHAccel over a scene, built with one of BVHAccel's split
+// methods (the HLBVH uses BVHAccel's builder); its nodes stay in the worker.
+class FastBVHAccel : public Primitive {
+  public:
+    using SplitMethod = lrt::BVHAccel::SplitMethod;
+    FastBVHAccel(const Scene &scene, int maxPrimsInNode,
+                 SplitMethod splitMethod)
+        : built(ex::BuildBVH(scene.value, maxPrimsInNode, splitMethod,
+                             Accelerator::FastBVHAccel, false)),
+          kept(std::make_shared<KeptInWorker>(built.handle, scene.prims,
+                                              false)) {
+        for (int k : built.order) primitives.push_back(kept->At(k));
+    }
+    Bounds3f WorldBound() const override { return built.worldBound; }
+    bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override {
+        return kept->Trace(Traversal::Own, ray, isect);
+    }
+    bool IntersectP(const Ray &ray) const override {
+        return kept->Trace(Traversal::Own, ray, nullptr);
+    }
+    const std::vector<std::shared_ptr<Primitive>> &Primitives() const {
+        return primitives;
+    }
+    int MaxPrimsInNode() const { return built.maxPrimsInNode; }
+    BVHStats Stats() const { return built.stats; }
+
+  private:
+    BuiltBVH built;
+    std::shared_ptr<const KeptInWorker> kept;
+    std::vector<std::shared_ptr<Primitive>> primitives;
+};
+
+}  // namespace ex
+}  // namespace lrt
+
+#endif  // LRT_TESTS_CH06_EXERCISE_CALLS_H

@@ -564,7 +564,7 @@ class Book:
                                    % (suite, exercise_id, exercise.chapter,
                                       'hidden/' if hidden else '', exercise.chapter))
                     else:
-                        if macro != 'EXERCISE_TEST' and not os.environ.get('LRT_DEV_TMP'):
+                        if macro != 'EXERCISE_TEST':
                             self.error(path, line, 'test %s.%s of exercise %s is declared '
                                        'with %s: declare it with EXERCISE_TEST and reach the '
                                        'exercise\'s code through its exercise calls '

@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "quadric_oracle.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -25,22 +27,11 @@
 
 namespace {
 
-using LD = long double;
-
-struct L3 {
-    LD x = 0, y = 0, z = 0;
-    L3() {}
-    L3(LD x, LD y, LD z) : x(x), y(y), z(z) {}
-    LD operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-};
-L3 operator+(L3 a, L3 b) { return L3(a.x + b.x, a.y + b.y, a.z + b.z); }
-L3 operator-(L3 a, L3 b) { return L3(a.x - b.x, a.y - b.y, a.z - b.z); }
-L3 operator*(LD s, L3 a) { return L3(s * a.x, s * a.y, s * a.z); }
-LD Dot(L3 a, L3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-LD Len(L3 a) { return std::sqrt(Dot(a, a)); }
-
 const LD kEps = (LD)lrt::MachineEpsilon;
 LD Gamma(int n) { return n * kEps / (1 - n * kEps); }
+// The exponent of the smallest relative offsets of the random rays: a tenth
+// of machine epsilon, 6e-9 for float and 1e-17 for double.
+const double kLogEps = std::log10((double)lrt::MachineEpsilon) - 1;
 
 // The object-space ray of a Float world ray, and the bounds e and g on the
 // rounding errors of its origin and direction that the transformation
@@ -78,24 +69,24 @@ ObjectRay ToObject(const lrt::Transform &w2o, const lrt::Ray &r) {
 // The exact intersection of a line with a sphere of radius r at the
 // origin, and the chapter's bounds on the errors of a Float computation.
 struct SphereOracle {
-    LD m = 0;        // distance of the line from the center
+    LD m = 0;           // distance of the line from the center
     LD t0 = 0, t1 = 0;  // roots, t0 <= t1, when m <= r
     bool line = false;  // the line meets the sphere
     // The decision band: a computed |f| is within w of m.
     LD w = 0;
     LD tHalfChord = 0;  // half the chord, as a distance (0 for a miss)
-    LD K = 0;        // signed distance to the closest point along the ray
+    LD K = 0;           // signed distance to the closest point along the ray
 };
 
 SphereOracle Intersect(const ObjectRay &ray, LD r) {
     SphereOracle s;
-    LD a = Dot(ray.d, ray.d), dl = std::sqrt(a);
-    LD k = -Dot(ray.o, ray.d) / a;
+    LD a = dot3(ray.d, ray.d), dl = std::sqrt(a);
+    LD k = -dot3(ray.o, ray.d) / a;
     L3 f = ray.o + k * ray.d;
-    s.m = Len(f);
+    s.m = len3(f);
     s.K = k * dl;
-    LD ol = Len(ray.o);
-    s.w = Gamma(8) * ol + Gamma(4) * r + Len(ray.e) + ol * Len(ray.g) / dl;
+    LD ol = len3(ray.o);
+    s.w = Gamma(8) * ol + Gamma(4) * r + len3(ray.e) + ol * len3(ray.g) / dl;
     s.line = s.m <= r;
     if (!s.line) return s;
     LD h = std::sqrt((r - s.m) * (r + s.m) / a);
@@ -115,38 +106,23 @@ SphereOracle Intersect(const ObjectRay &ray, LD r) {
 // measured along the ray: the rounding of c and q and the error of the
 // half chord, which grows near grazing incidence.
 LD DistanceBound(const ObjectRay &ray, const SphereOracle &s, LD r, LD t) {
-    LD dl = Len(ray.d), ol = Len(ray.o), el = Len(ray.e);
+    LD dl = len3(ray.d), ol = len3(ray.o), el = len3(ray.e);
     LD dist = std::abs(t) * dl, hc = s.tHalfChord;
     return (Gamma(4) * ol * ol + Gamma(2) * r * r + 2 * ol * el) /
                (std::abs(s.K) + hc) +
-           Gamma(3) * ol + el + ol * Len(ray.g) / dl + r * s.w / hc +
+           Gamma(3) * ol + el + ol * len3(ray.g) / dl + r * s.w / hc +
            Gamma(5) * (hc + dist);
 }
 
-struct Rng {
-    std::mt19937_64 g;
-    explicit Rng(uint64_t seed) : g(seed) {}
-    double U(double a = 0, double b = 1) {
-        return std::uniform_real_distribution<double>(a, b)(g);
-    }
-    L3 Dir() {
-        double z = U(-1, 1), phi = U(0, 2 * 3.14159265358979323846);
-        double s = std::sqrt(1 - z * z);
-        return L3(s * std::cos(phi), s * std::sin(phi), z);
-    }
-    // A unit vector perpendicular to v.
-    L3 Perpendicular(L3 v) {
-        L3 u = Dir();
-        L3 p = u - (Dot(u, v) / Dot(v, v)) * v;
-        return (1 / Len(p)) * p;
-    }
-};
-
-lrt::Vector3f ToV(L3 a) {
-    return lrt::Vector3f(lrt::Float(a.x), lrt::Float(a.y), lrt::Float(a.z));
+// A random unit vector, and a random unit vector perpendicular to v.
+L3 Dir(Rng &rng) {
+    D3 u = rng.Dir();
+    return L3(u.x, u.y, u.z);
 }
-lrt::Point3f ToP(L3 a) {
-    return lrt::Point3f(lrt::Float(a.x), lrt::Float(a.y), lrt::Float(a.z));
+L3 Perpendicular(Rng &rng, L3 v) {
+    L3 u = Dir(rng);
+    L3 p = u - (dot3(u, v) / dot3(v, v)) * v;
+    return (1 / len3(p)) * p;
 }
 
 // A sphere with its transformations, translated to c and, if rotate, turned
@@ -157,12 +133,13 @@ struct PlacedSphere {
     LD r;
     PlacedSphere(Rng &rng, L3 c, double radius, bool rotate) {
         lrt::Transform t = lrt::Translate(ToV(c));
-        if (rotate) t = t * lrt::Rotate(lrt::Float(rng.U(0, 360)), ToV(rng.Dir()));
+        if (rotate)
+            t = t * lrt::Rotate(lrt::Float(rng.U(0, 360)), ToV(Dir(rng)));
         o2w.reset(new lrt::Transform(t));
         w2o.reset(new lrt::Transform(Inverse(t)));
         lrt::Float rf = lrt::Float(radius);
-        sphere.reset(new lrt::Sphere(o2w.get(), w2o.get(), false, rf, -rf, rf,
-                                     360));
+        sphere.reset(
+            new lrt::Sphere(o2w.get(), w2o.get(), false, rf, -rf, rf, 360));
         r = rf;
     }
 };
@@ -175,7 +152,7 @@ struct Tally {
     double maxWrongRatio = 0;  // largest |m - r| / w of a wrong decision
     long tMaxDecisions = 0, tMaxWrong = 0, tMaxWrongOutside = 0;
     long tChecked = 0, tFailures = 0;
-    double maxTRatio = 0;      // largest distance error over its bound
+    double maxTRatio = 0;  // largest distance error over its bound
 };
 
 const double kDistances[] = {1e0, 1e1, 1e2, 1e3, 1e4};
@@ -185,36 +162,39 @@ constexpr int kRaysPerSphere = 40;
 // Random rays from near the world origin at spheres whose centers are at
 // distance D from it (radii 0.3 to 3, a tenth of that at D = 1), half of
 // them rotated. Of the rays, 40% pass the center at distances uniform over
-// the disk of radius 1.5 r, and 60% within a relative 1e-9 to 0.3 of the
-// silhouette, inside or outside; every fourth ray that meets the sphere has
-// a finite tMax within a relative 1e-8 to 1e-3 of the oracle's hit. The
-// length of the direction varies from 0.2 to 5.
+// the disk of radius 1.5 r, and 60% within a relative 6e-9 to 0.3 of the
+// silhouette (1e-17 in double precision), inside or outside; every fourth
+// ray that meets the sphere has a finite tMax within a relative 6e-8
+// (1e-16) to 1e-3 of the oracle's hit. The length of the direction varies
+// from 0.2 to 5.
 Tally RunDistance(double D, uint64_t seed) {
     Rng rng(seed);
     Tally tl;
     double scale = std::min(1.0, D / 10);
     for (int s = 0; s < kSpheresPerDistance; ++s) {
-        L3 c = D * rng.Dir();
+        L3 c = D * Dir(rng);
         PlacedSphere ps(rng, c, scale * rng.U(0.3, 3), s % 2 == 1);
         for (int i = 0; i < kRaysPerSphere; ++i) {
             L3 o(rng.U(-0.5, 0.5) * scale, rng.U(-0.5, 0.5) * scale,
                  rng.U(-0.5, 0.5) * scale);
             L3 toC = c - o;
             int kind = i % 5 < 2 ? 0 : 1;
-            double mt = kind == 0
-                            ? 1.5 * ps.r * std::sqrt(rng.U())
-                            : ps.r * (1 + (rng.U() < 0.5 ? -1 : 1) *
-                                              std::pow(10.0, rng.U(-9, -0.5)));
+            double mt =
+                kind == 0
+                    ? 1.5 * ps.r * std::sqrt(rng.U())
+                    : ps.r * (1 + (rng.U() < 0.5 ? -1 : 1) *
+                                      std::pow(10.0, rng.U(kLogEps, -0.5)));
             // The direction from o at the angle whose sine is mt / |c - o|
             // to the center passes mt from it.
-            LD sinA = mt / Len(toC), cosA = std::sqrt(1 - sinA * sinA);
-            L3 dir = (cosA / Len(toC)) * toC + sinA * rng.Perpendicular(toC);
+            LD sinA = mt / len3(toC), cosA = std::sqrt(1 - sinA * sinA);
+            L3 dir = (cosA / len3(toC)) * toC + sinA * Perpendicular(rng, toC);
             lrt::Ray ray(ToP(o), ToV((LD)rng.U(0.2, 5) * dir));
             ObjectRay ob = ToObject(*ps.w2o, ray);
             SphereOracle orc = Intersect(ob, ps.r);
             bool finiteTMax = i % 4 == 3 && orc.line;
             if (finiteTMax) {
-                LD rel = std::pow(10.0, rng.U(-8, -3)) * (rng.U() < 0.5 ? -1 : 1);
+                LD rel = std::pow(10.0, rng.U(kLogEps + 1, -3)) *
+                         (rng.U() < 0.5 ? -1 : 1);
                 ray.tMax = lrt::Float(orc.t0 * (1 + rel));
             }
             lrt::Float tHit = -1;
@@ -222,14 +202,14 @@ Tally RunDistance(double D, uint64_t seed) {
             bool hit = ps.sphere->Intersect(ray, &tHit, &si);
             EXPECT_EQ(hit, ps.sphere->IntersectP(ray));
             // The ray starts outside, and the sphere is in front.
-            EXPECT_GT(orc.K, Len(ob.o) * 0.5);
+            EXPECT_GT(orc.K, len3(ob.o) * 0.5);
             bool inBand = std::abs(orc.m - ps.r) <= orc.w;
             if (finiteTMax) {
                 // The comparison with tMax is right outside the distance's
                 // error bound (and that of the hit-or-miss decision).
                 ++tl.tMaxDecisions;
                 if (inBand) continue;
-                LD bound = DistanceBound(ob, orc, ps.r, orc.t0) / Len(ob.d);
+                LD bound = DistanceBound(ob, orc, ps.r, orc.t0) / len3(ob.d);
                 if (hit != (orc.t0 <= ray.tMax)) {
                     ++tl.tMaxWrong;
                     if (std::abs(orc.t0 - ray.tMax) > bound &&
@@ -249,36 +229,36 @@ Tally RunDistance(double D, uint64_t seed) {
                 double ratio = double(std::abs(orc.m - ps.r) / orc.w);
                 tl.maxWrongRatio = std::max(tl.maxWrongRatio, ratio);
                 if (!inBand && tl.wrongOutside[kind]++ < 5)
-                    ADD_FAILURE() << "D = " << D << ": lrt says "
-                                  << (hit ? "hit" : "miss") << " at t = "
-                                  << tHit << ", the line passes "
-                                  << (double)orc.m << " from the center, r = "
-                                  << (double)ps.r << ", band "
-                                  << (double)orc.w << "; ray " << ray;
+                    ADD_FAILURE()
+                        << "D = " << D << ": lrt says "
+                        << (hit ? "hit" : "miss") << " at t = " << tHit
+                        << ", the line passes " << (double)orc.m
+                        << " from the center, r = " << (double)ps.r << ", band "
+                        << (double)orc.w << "; ray " << ray;
                 continue;
             }
             if (hit && !inBand) {
                 ++tl.tChecked;
                 LD bound = DistanceBound(ob, orc, ps.r, orc.t0);
-                LD err = std::abs(tHit - orc.t0) * Len(ob.d);
+                LD err = std::abs(tHit - orc.t0) * len3(ob.d);
                 tl.maxTRatio = std::max(tl.maxTRatio, double(err / bound));
                 if (err > bound && tl.tFailures++ < 5)
-                    ADD_FAILURE() << "D = " << D << ": t = " << tHit
-                                  << ", exact " << (double)orc.t0
-                                  << ", error bound " << (double)bound;
+                    ADD_FAILURE()
+                        << "D = " << D << ": t = " << tHit << ", exact "
+                        << (double)orc.t0 << ", error bound " << (double)bound;
             }
         }
     }
-    std::printf("[ far      ] D = %-5g wrong hit or miss: %4ld of %ld aimed "
-                "uniformly (%ld outside the band), %4ld of %ld at the "
-                "silhouette (%ld in the band, %ld wrong outside it; largest "
-                "|m - r| of a wrong one %.3g w); wrong tMax decisions %ld of "
-                "%ld (%ld outside the bound); t errors up to %.3g of the "
-                "bound (%ld hits)\n",
-                D, tl.wrong[0], tl.rays[0], tl.wrongOutside[0], tl.wrong[1],
-                tl.rays[1], tl.inBand[1], tl.wrongOutside[1],
-                tl.maxWrongRatio, tl.tMaxWrong, tl.tMaxDecisions,
-                tl.tMaxWrongOutside, tl.maxTRatio, tl.tChecked);
+    std::printf(
+        "[ far      ] D = %-5g wrong hit or miss: %4ld of %ld aimed "
+        "uniformly (%ld outside the band), %4ld of %ld at the "
+        "silhouette (%ld in the band, %ld wrong outside it; largest "
+        "|m - r| of a wrong one %.3g w); wrong tMax decisions %ld of "
+        "%ld (%ld outside the bound); t errors up to %.3g of the "
+        "bound (%ld hits)\n",
+        D, tl.wrong[0], tl.rays[0], tl.wrongOutside[0], tl.wrong[1], tl.rays[1],
+        tl.inBand[1], tl.wrongOutside[1], tl.maxWrongRatio, tl.tMaxWrong,
+        tl.tMaxDecisions, tl.tMaxWrongOutside, tl.maxTRatio, tl.tChecked);
     return tl;
 }
 
@@ -326,12 +306,13 @@ TEST(SphereFar, RaysStartingNearHugeSpheres) {
     for (int k = 0; k < 5; ++k) {
         double R = kDistances[k];
         for (int s = 0; s < 100; ++s) {
-            L3 c = (R * rng.U(0, 2)) * rng.Dir();
+            L3 c = (R * rng.U(0, 2)) * Dir(rng);
             PlacedSphere ps(rng, c, R * rng.U(0.5, 1.5), s % 2 == 1);
             for (int i = 0; i < 40; ++i) {
-                double rel = (i % 2 ? 1 : -1) * std::pow(10.0, rng.U(-8, -0.5));
-                L3 o = c + (LD)(ps.r * (1 + rel)) * rng.Dir();
-                lrt::Ray ray(ToP(o), ToV((LD)rng.U(0.2, 5) * rng.Dir()));
+                double rel =
+                    (i % 2 ? 1 : -1) * std::pow(10.0, rng.U(kLogEps + 1, -0.5));
+                L3 o = c + (LD)(ps.r * (1 + rel)) * Dir(rng);
+                lrt::Ray ray(ToP(o), ToV((LD)rng.U(0.2, 5) * Dir(rng)));
                 ObjectRay ob = ToObject(*ps.w2o, ray);
                 SphereOracle orc = Intersect(ob, ps.r);
                 lrt::Float tHit = -1;
@@ -339,28 +320,29 @@ TEST(SphereFar, RaysStartingNearHugeSpheres) {
                 bool hit = ps.sphere->Intersect(ray, &tHit, &si);
                 EXPECT_EQ(hit, ps.sphere->IntersectP(ray));
                 ++rays;
-                LD dl = Len(ob.d);
+                LD dl = len3(ob.d);
                 // A hit must be one of the roots, and a root in front.
                 if (hit) {
                     if (!orc.line && std::abs(orc.m - ps.r) > orc.w) {
                         if (failures++ < 5)
-                            ADD_FAILURE() << "R = " << R << ": hit at t = "
-                                          << tHit << ", but the line misses "
-                                          << "by " << double(orc.m - ps.r);
+                            ADD_FAILURE()
+                                << "R = " << R << ": hit at t = " << tHit
+                                << ", but the line misses "
+                                << "by " << double(orc.m - ps.r);
                         continue;
                     }
                     if (!orc.line) {
                         ++ambiguous;
                         continue;
                     }
-                    bool near0 = std::abs(tHit - orc.t0) <=
-                                 std::abs(tHit - orc.t1);
+                    bool near0 =
+                        std::abs(tHit - orc.t0) <= std::abs(tHit - orc.t1);
                     LD root = near0 ? orc.t0 : orc.t1;
                     if (!(root > 0)) {
                         if (failures++ < 5)
-                            ADD_FAILURE() << "R = " << R << ": reported t = "
-                                          << tHit << " is a root at exact t = "
-                                          << (double)root;
+                            ADD_FAILURE()
+                                << "R = " << R << ": reported t = " << tHit
+                                << " is a root at exact t = " << (double)root;
                         continue;
                     }
                 }
@@ -394,15 +376,17 @@ TEST(SphereFar, RaysStartingNearHugeSpheres) {
                         ADD_FAILURE()
                             << "R = " << R << ": lrt " << (hit ? "hit" : "miss")
                             << " t = " << tHit << ", expected "
-                            << (expected ? "hit" : "miss") << " t = "
-                            << (double)expectT << "; ray " << ray;
+                            << (expected ? "hit" : "miss")
+                            << " t = " << (double)expectT << "; ray " << ray;
                 }
             }
         }
     }
-    std::printf("[ far      ] rays from near huge spheres: %ld rays, %ld "
-                "undecided (%ld with a root within its bound of zero), %ld "
-                "failures\n", rays, ambiguous, nearZero, failures);
+    std::printf(
+        "[ far      ] rays from near huge spheres: %ld rays, %ld "
+        "undecided (%ld with a root within its bound of zero), %ld "
+        "failures\n",
+        rays, ambiguous, nearZero, failures);
     EXPECT_EQ(failures, 0);
     EXPECT_LT(ambiguous, rays / 2);
 }
@@ -411,7 +395,8 @@ TEST(SphereFar, RaysStartingNearHugeSpheres) {
 // sphere of radius 0.349, about 1,000 units away, and must miss it.
 TEST(SphereFar, DistantMissIsAMiss) {
     Rng rng(0);
-    lrt::Transform o2w = lrt::Translate(lrt::Vector3f(1001.685f, 2.416f, 1.018f));
+    lrt::Transform o2w =
+        lrt::Translate(lrt::Vector3f(1001.685f, 2.416f, 1.018f));
     lrt::Transform w2o = Inverse(o2w);
     lrt::Sphere s(&o2w, &w2o, false, 0.34888f, -0.34888f, 0.34888f, 360);
     lrt::Ray ray(lrt::Point3f(-9.32228088f, -15.9393663f, -18.6916981f),
@@ -442,7 +427,7 @@ TEST(SphereFar, NearerOfTwoDistantSpheresWinsInEitherOrder) {
     // ray enters it 0.984 (in units of t) after entering A.
     L3 o(ray.o.x, ray.o.y, ray.o.z), d(ray.d.x, ray.d.y, ray.d.z);
     LD tB = orcA.t0 + 0.984L;
-    L3 cB = o + (tB + 0.5L / Len(d)) * d;
+    L3 cB = o + (tB + 0.5L / len3(d)) * d;
     lrt::Transform o2wB = lrt::Translate(ToV(cB));
     lrt::Transform w2oB = Inverse(o2wB);
     lrt::Sphere b(&o2wB, &w2oB, false, 0.5f, -0.5f, 0.5f, 360);
@@ -463,15 +448,15 @@ TEST(DiskFar, NearerOfTwoCloseDisksWinsInEitherOrder) {
     int checked = 0;
     for (int i = 0; i < 200; ++i) {
         lrt::Transform o2w =
-            lrt::Translate(ToV((LD)1e4 * rng.Dir())) *
-            lrt::Rotate(lrt::Float(rng.U(0, 360)), ToV(rng.Dir()));
+            lrt::Translate(ToV((LD)1e4 * Dir(rng))) *
+            lrt::Rotate(lrt::Float(rng.U(0, 360)), ToV(Dir(rng)));
         lrt::Transform w2o = Inverse(o2w);
         lrt::Disk nearer(&o2w, &w2o, false, 0, 2, 0, 360);
         lrt::Disk farther(&o2w, &w2o, false, -1e-3f, 2, 0, 360);
         // From 3 to 5 units above the disks, at a point within radius 1.
         L3 target(rng.U(-0.7, 0.7), rng.U(-0.7, 0.7), 0);
-        L3 from = target + (LD)rng.U(3, 5) * L3(rng.U(-0.5, 0.5),
-                                                   rng.U(-0.5, 0.5), 1);
+        L3 from = target +
+                  (LD)rng.U(3, 5) * L3(rng.U(-0.5, 0.5), rng.U(-0.5, 0.5), 1);
         lrt::Point3f o = o2w(ToP(from));
         lrt::Vector3f d = o2w(ToP(target)) - o;
         lrt::Ray ray(o, d);
@@ -485,8 +470,8 @@ TEST(DiskFar, NearerOfTwoCloseDisksWinsInEitherOrder) {
         EXPECT_EQ(Closest({&nearer, &farther}, ray, &t), &nearer);
         EXPECT_EQ(t, tNear);
         EXPECT_EQ(Closest({&farther, &nearer}, ray, &t), &nearer)
-            << "ray " << ray << ": t = " << t << ", nearer disk at "
-            << tNear << ", farther at " << tFar;
+            << "ray " << ray << ": t = " << t << ", nearer disk at " << tNear
+            << ", farther at " << tFar;
         EXPECT_EQ(t, tNear);
     }
     EXPECT_GT(checked, 150);
@@ -507,10 +492,10 @@ long CheckTMaxRule(int kind, uint64_t seed) {
     long checked = 0, failures = 0;
     for (int i = 0; i < 1000; ++i) {
         double D = std::pow(10.0, rng.U(0, 4));
-        L3 c = D * rng.Dir();
+        L3 c = D * Dir(rng);
         lrt::Transform o2w =
             lrt::Translate(ToV(c)) *
-            lrt::Rotate(lrt::Float(rng.U(0, 360)), ToV(rng.Dir()));
+            lrt::Rotate(lrt::Float(rng.U(0, 360)), ToV(Dir(rng)));
         lrt::Transform w2o = Inverse(o2w);
         lrt::Transform id;
         std::shared_ptr<lrt::Shape> shape;
@@ -530,8 +515,8 @@ long CheckTMaxRule(int kind, uint64_t seed) {
         }
         // From near the world origin or from near the shape.
         L3 o = (i % 2) ? L3(rng.U(-1, 1), rng.U(-1, 1), rng.U(-1, 1))
-                       : c + (LD)rng.U(2, 10) * rng.Dir();
-        L3 target = c + (LD)rng.U(0, 1.5) * rng.Dir();
+                       : c + (LD)rng.U(2, 10) * Dir(rng);
+        L3 target = c + (LD)rng.U(0, 1.5) * Dir(rng);
         lrt::Ray ray(ToP(o), ToV((LD)rng.U(0.2, 5) * (target - o)));
         lrt::Float t;
         lrt::SurfaceInteraction si;

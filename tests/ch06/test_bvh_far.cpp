@@ -11,6 +11,7 @@
 // shape compares tMax with an error bound rather than with the distance it
 // reports (Chapter 3, "Which Hits Count").
 
+#include "bvh_checks.h"
 #include "lrt/lrt.h"
 
 #include <gtest/gtest.h>
@@ -27,26 +28,16 @@
 
 using namespace lrt;
 using SplitMethod = BVHAccel::SplitMethod;
+using lrt_test::RandomDirection;
+using lrt_test::U;
 
 namespace {
 
 constexpr int kScenesPerOffset = 3;
 constexpr int kRaysPerScene = 2000;
 constexpr int kMaxFailuresReported = 10;
-
-double U(std::mt19937_64 &rng, double a, double b) {
-    return std::uniform_real_distribution<double>(a, b)(rng);
-}
-
-Vector3f RandomDirection(std::mt19937_64 &rng) {
-    std::normal_distribution<double> n(0, 1);
-    for (;;) {
-        double x = n(rng), y = n(rng), z = n(rng);
-        double l = std::sqrt(x * x + y * y + z * z);
-        if (l > 1e-3)
-            return Vector3f(Float(x / l), Float(y / l), Float(z / l));
-    }
-}
+// BVHAccel with 4 split methods and FastBVHAccel with 2, at 3 leaf sizes.
+constexpr int kAccelerators = 18;
 
 Point3f RandomPoint(std::mt19937_64 &rng, const Point3f &c, double r) {
     return Point3f(Float(c.x + U(rng, -r, r)), Float(c.y + U(rng, -r, r)),
@@ -101,20 +92,21 @@ Scene FarScene(std::mt19937_64 &rng, const Point3f &center) {
             Float r = Float(U(rng, 0.3, 3));
             Float ri = rng() % 3 == 0 ? Float(U(rng, 0, 0.8)) * r : 0;
             Float phiMax = rng() % 3 == 0 ? Float(U(rng, 30, 360)) : 360;
-            scene.Add(std::make_shared<Disk>(scene.Keep(o2w),
-                                             scene.Keep(Inverse(o2w)), false,
-                                             Float(U(rng, -1, 1)), r, ri,
-                                             phiMax));
+            scene.Add(std::make_shared<Disk>(
+                scene.Keep(o2w), scene.Keep(Inverse(o2w)), false,
+                Float(U(rng, -1, 1)), r, ri, phiMax));
         } else {
             int nt = 1 + int(rng() % 4);
             double size = U(rng, 0.3, 3);
             std::vector<Point3f> p;
             std::vector<int> idx;
-            for (int i = 0; i < nt + 2; ++i) p.push_back(RandomPoint(rng, c, size));
-            for (int i = 0; i < nt; ++i) idx.insert(idx.end(), {i, i + 1, i + 2});
+            for (int i = 0; i < nt + 2; ++i)
+                p.push_back(RandomPoint(rng, c, size));
+            for (int i = 0; i < nt; ++i)
+                idx.insert(idx.end(), {i, i + 1, i + 2});
             for (auto &t : CreateTriangleMesh(id, id, false, nt, idx.data(),
-                                              int(p.size()), p.data(),
-                                              nullptr, nullptr, nullptr))
+                                              int(p.size()), p.data(), nullptr,
+                                              nullptr, nullptr))
                 scene.Add(t);
         }
     }
@@ -180,8 +172,8 @@ std::string Compare(const Primitive &accel, const Ray &ray0,
             << bf.hits.size() << " hits (closest at t = " << bf.tMin << ")";
     } else if (hit) {
         if (ray.tMax != bf.tMin)
-            err << "t = " << ray.tMax << ", but the closest hit is at t = "
-                << bf.tMin;
+            err << "t = " << ray.tMax
+                << ", but the closest hit is at t = " << bf.tMin;
         bool atThatDistance = false;
         for (const auto &h : bf.hits)
             atThatDistance |= h.first == si.primitive && h.second == bf.tMin;
@@ -189,8 +181,7 @@ std::string Compare(const Primitive &accel, const Ray &ray0,
             err << " the primitive reported is not hit at t = " << bf.tMin;
     }
     if (accel.IntersectP(ray0) != bf.anyP)
-        err << " IntersectP() says " << !bf.anyP << ", brute force "
-            << bf.anyP;
+        err << " IntersectP() says " << !bf.anyP << ", brute force " << bf.anyP;
     return err.str();
 }
 
@@ -225,6 +216,7 @@ void RunOffset(double offset, uint64_t seed) {
         Point3f center(Float(offset) * RandomDirection(rng));
         Scene scene = FarScene(rng, center);
         std::vector<Accel> accels = AllAccels(scene.prims);
+        EXPECT_EQ(int(accels.size()), kAccelerators);
         for (int i = 0; i < kRaysPerScene; ++i) {
             Ray ray = FarRay(rng, scene);
             BruteForceResult bf = BruteForce(scene, ray);
@@ -233,15 +225,16 @@ void RunOffset(double offset, uint64_t seed) {
             for (const Accel &a : accels) {
                 std::string e = Compare(*a.accel, ray, bf);
                 if (!e.empty() && failures++ < kMaxFailuresReported)
-                    ADD_FAILURE() << "offset " << offset << ", " << a.name
-                                  << ", scene " << s << ", ray " << ray
-                                  << ": " << e;
+                    ADD_FAILURE()
+                        << "offset " << offset << ", " << a.name << ", scene "
+                        << s << ", ray " << ray << ": " << e;
             }
         }
     }
-    std::printf("[ far BVH  ] offset %g: %ld rays, %ld hits, %d "
-                "disagreements with brute force\n", offset, rays, hits,
-                failures);
+    std::printf(
+        "[ far BVH  ] offset %g: %ld rays, %ld hits; %d answers of the %d "
+        "accelerators disagree with brute force\n",
+        offset, rays, hits, failures, kAccelerators);
     EXPECT_EQ(failures, 0) << "offset " << offset;
     EXPECT_GT(hits, rays / 3);
     EXPECT_LT(hits, rays * 9 / 10);

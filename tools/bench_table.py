@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""Turn the JSON of `make bench` into a whitespace-separated table for gnuplot.
+"""Turn the JSON of `make bench` into a whitespace-separated table for a plot.
 
-    tools/bench_table.py figures/data/bvhbench-levels.json > table.dat
+    tools/bench_table.py figures/data/bvhbench-levels.json > figures/bvh-bench.dat
 
 One row per mesh (sorted by triangle count) with, for the SAH trees of the
 first and the final version: build time in ms and Mrays/s for the camera rays
-and for the incoherent rays. Fails, naming the file, if a value is missing.
+and for the incoherent rays. The first line names the columns, which the
+book's plot (pgfplots, chapter 6) reads by name. Fails, naming the file, if a
+value is missing.
 """
 import json
 import sys
@@ -32,8 +34,8 @@ def main(path):
     if not rows:
         sys.exit('bench_table: %s: no SAH results' % path)
     columns = [(v, k) for v in VERSIONS for k in ('build',) + RAYS]
-    print('# triangles ' + ' '.join('%s_%s' % (v, k.split('.')[0])
-                                    for v, k in columns))
+    print('triangles ' + ' '.join('%s_%s' % (v, k.split('.')[0])
+                                  for v, k in columns))
     for triangles in sorted(rows):
         row = rows[triangles]
         missing = [c for c in columns if c not in row]

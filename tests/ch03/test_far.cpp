@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "exercise_calls.h"
 #include "quadric_oracle.h"
 
 #include <algorithm>
@@ -486,6 +487,13 @@ namespace {
 // with a shrinking tMax finds the least distance. Shapes near and far from
 // the world origin, translated up to 1e4 and rotated; kinds 0, 1 and 2 are
 // partial spheres, rings and triangles. Returns the number of hits checked.
+// What a shape answers for a ray: Intersect()'s verdict and distance, and
+// IntersectP()'s verdict.
+struct Answer {
+    bool hit = false, hitP = false;
+    lrt::Float t = 0;
+};
+
 long CheckTMaxRule(int kind, uint64_t seed) {
     Rng rng(seed);
     const char *names[3] = {"sphere", "disk", "triangle"};
@@ -497,8 +505,8 @@ long CheckTMaxRule(int kind, uint64_t seed) {
             lrt::Translate(ToV(c)) *
             lrt::Rotate(lrt::Float(rng.U(0, 360)), ToV(Dir(rng)));
         lrt::Transform w2o = Inverse(o2w);
-        lrt::Transform id;
         std::shared_ptr<lrt::Shape> shape;
+        lrt::MeshSpec triangle;
         if (kind == 0) {
             shape = std::make_shared<lrt::Sphere>(&o2w, &w2o, false, 1.5f, -1,
                                                   1.5f, 300);
@@ -506,28 +514,39 @@ long CheckTMaxRule(int kind, uint64_t seed) {
             shape = std::make_shared<lrt::Disk>(&o2w, &w2o, false, 0.2f, 1.5f,
                                                 0.3f, 300);
         } else {
-            lrt::Point3f p[3] = {o2w(lrt::Point3f(-1.5f, -1, 0)),
-                                 o2w(lrt::Point3f(1.5f, -1, 0.2f)),
-                                 o2w(lrt::Point3f(0, 1.5f, -0.3f))};
-            int idx[3] = {0, 1, 2};
-            shape = lrt::CreateTriangleMesh(&id, &id, false, 1, idx, 3, p,
-                                            nullptr, nullptr, nullptr)[0];
+            // A world-space triangle, asked through ex-3.23's calls.
+            triangle.p = {o2w(lrt::Point3f(-1.5f, -1, 0)),
+                          o2w(lrt::Point3f(1.5f, -1, 0.2f)),
+                          o2w(lrt::Point3f(0, 1.5f, -0.3f))};
+            triangle.indices = {0, 1, 2};
         }
+        auto ask = [&](const lrt::Ray &r) {
+            Answer a;
+            if (shape) {
+                lrt::SurfaceInteraction si;
+                a.hit = shape->Intersect(r, &a.t, &si);
+                a.hitP = shape->IntersectP(r);
+            } else {
+                lrt::TriangleHit h = lrt::ex::IntersectTriangleOf(triangle, 0, r, 0);
+                a = Answer{h.hit, h.hitP, h.tHit};
+            }
+            return a;
+        };
         // From near the world origin or from near the shape.
         L3 o = (i % 2) ? L3(rng.U(-1, 1), rng.U(-1, 1), rng.U(-1, 1))
                        : c + (LD)rng.U(2, 10) * Dir(rng);
         L3 target = c + (LD)rng.U(0, 1.5) * Dir(rng);
         lrt::Ray ray(ToP(o), ToV((LD)rng.U(0.2, 5) * (target - o)));
-        lrt::Float t;
-        lrt::SurfaceInteraction si;
-        if (!shape->Intersect(ray, &t, &si)) continue;
+        Answer first = ask(ray);
+        if (!first.hit) continue;
         ++checked;
-        lrt::Float t2 = -1;
+        const lrt::Float t = first.t;
         ray.tMax = t;
-        bool atT = shape->Intersect(ray, &t2, &si) && t2 == t &&
-                   shape->IntersectP(ray);
+        Answer at = ask(ray);
+        bool atT = at.hit && at.t == t && at.hitP;
         ray.tMax = lrt::NextFloatDown(t);
-        bool below = shape->Intersect(ray, &t2, &si) || shape->IntersectP(ray);
+        Answer past = ask(ray);
+        bool below = past.hit || past.hitP;
         if ((!atT || below) && failures++ < 5)
             ADD_FAILURE() << names[kind] << " hit at t = " << t
                           << ": with tMax = t " << (atT ? "hit" : "no hit at t")
@@ -548,6 +567,6 @@ TEST(ShapeTMax, SpheresAndDisksAcceptAHitExactlyWhenItIsAtMostTMax) {
 }
 
 // The same rule for triangles, whose test uses the code of exercise ex-3.23.
-TEST(Ex3_23_TriangleTMax, AHitIsAcceptedExactlyWhenItIsAtMostTMax) {
-    EXPECT_GT(CheckTMaxRule(2, 3132), 300);
+EXERCISE_TEST(Ex3_23_TriangleTMax, AHitIsAcceptedExactlyWhenItIsAtMostTMax) {
+    EXPECT_GT(CheckTMaxRule(2, lrt::calls::Seed(3132)), 300);
 }

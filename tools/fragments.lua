@@ -113,15 +113,26 @@ Book.__index = Book
 function M.read(doc, fail)
   local book = setmetatable({chunks = {}, by_name = {}, uses_of = {}, ids = {},
                              identifiers = {}, labels = {}, fail = fail}, Book)
-  local chapter, count = 0, 0
+  -- Chapters are numbered 1, 2, ...; appendices (level-1 headers of class
+  -- appendix, which must come last) A, B, ..., as LaTeX numbers them.
+  local chapter, count, appendices = 0, 0, 0
   doc:walk({
     Header = function(block)
-      if block.level == 1 and not block.classes:includes('unnumbered') then
+      local appendix = block.level == 1 and block.classes:includes('appendix')
+      if appendix then
+        appendices, count = appendices + 1, 0
+        chapter = string.char(string.byte('A') + appendices - 1)
+      elseif block.level == 1 and not block.classes:includes('unnumbered') then
+        if appendices > 0 then
+          fail('chapter "' .. pandoc.utils.stringify(block) ..
+               '" stands after an appendix')
+        end
         chapter, count = chapter + 1, 0
       end
       if block.identifier ~= '' then
         book.labels[block.identifier] = {
-          kind = block.level == 1 and 'Chapter' or 'Section',
+          kind = appendix and 'Appendix' or block.level == 1 and 'Chapter'
+                 or 'Section',
           level = block.level, chapter = chapter}
       end
     end,

@@ -386,6 +386,14 @@ function Pandoc(doc)
     fail('references to undefined labels: ' .. table.concat(missing, ', '))
   end
 
+  -- LaTeX numbers the chapters after \appendix A, B, ...: put it before the
+  -- first appendix (a level-1 header of class appendix).
+  for i, block in ipairs(doc.blocks) do
+    if block.t == 'Header' and block.level == 1 and block.classes:includes('appendix') then
+      doc.blocks:insert(i, pandoc.RawBlock('latex', '\\appendix'))
+      break
+    end
+  end
   table.insert(doc.blocks, 1, pandoc.RawBlock('latex', fragment_names()))
   doc.blocks:insert(pandoc.RawBlock('latex', '\\backmatter'))
   if doc.meta.bibliography then

@@ -1,7 +1,7 @@
 # make bench: the BVH benchmark of Appendix A, bench/bvhbench.cpp, which
-# chapters/08-bvh-benchmark.md tangles like the library (roots outside lrt/ are not part of
-# liblrt.a). It measures one configuration, a compiler and its optimization
-# flags:
+# chapters/08-bvh-benchmark.md tangles like the library (roots outside lrt/
+# are not part of liblrt.a). It measures one configuration, a compiler and
+# its optimization flags:
 #
 #   make bench                                   g++ -O2 (the default)
 #   make bench BENCH_CXXFLAGS=-O3

@@ -50,7 +50,9 @@ lib: lint
 	$(ASOF) ASOF=$(LAST) -j$(JOBS) lib
 
 # The code as of chapter N is the tangle of chapters 1..N; it must compile and
-# pass the tests of chapters 1..N, so no chapter leans on a later one.
+# pass the tests of chapters 1..N, so no chapter leans on a later one. The
+# appendix (08) is a program, the benchmark, whose tests run it from Python.
+PYTHON_TESTS_08 := tests/tools/test_bench.py
 test: lint
 	@bins=(); \
 	for n in $(PREFIXES); do \
@@ -58,7 +60,8 @@ test: lint
 	    $(ASOF) ASOF=$$n ONLY=$(CH) -j$(JOBS) tests; \
 	    bins+=($$($(ASOF) -s ASOF=$$n ONLY=$(CH) list-tests)); \
 	done; \
-	python3 tools/runtests.py $(if $(CH),,--python-tests tests/tools) "$${bins[@]}"
+	python3 tools/runtests.py $(if $(CH),$(addprefix --python-tests ,$(PYTHON_TESTS_$(CH))),--python-tests \
+	    tests/tools) "$${bins[@]}"
 
 compile_commands.json: tangle
 	python3 tools/compile_commands.py --src tangled > $@

@@ -54,17 +54,15 @@ MAKE_ENV_DROP = ('MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'MAKEOVERRIDES', 'CHAPTERS'
 
 browser = None
 profile = None
-build_output = ''
 
 
 def setUpModule():
-    global browser, profile, build_output
+    global browser, profile
     env = {k: v for k, v in os.environ.items() if k not in MAKE_ENV_DROP}
     proc = subprocess.run(['make', '--no-print-directory', 'html'], cwd=ROOT, env=env,
                           capture_output=True, text=True)
-    build_output = proc.stdout + proc.stderr
     if proc.returncode != 0:
-        raise RuntimeError('make html failed:\n' + build_output[-4000:])
+        raise RuntimeError('make html failed:\n' + (proc.stdout + proc.stderr)[-4000:])
     profile = tempfile.mkdtemp(prefix='lrt-chromium-')
     options = webdriver.ChromeOptions()
     options.binary_location = CHROMIUM
@@ -97,11 +95,6 @@ def set_viewport(size):
     browser.execute_cdp_cmd('Emulation.setDeviceMetricsOverride', {
         'width': width, 'height': height, 'deviceScaleFactor': 1,
         'mobile': width < 600})
-
-
-def drain_logs():
-    browser.get_log('browser')
-    browser.get_log('performance')
 
 
 def open_page(target):
@@ -149,13 +142,25 @@ var untypeset = Array.from(document.querySelectorAll('span.math')).filter(functi
 var images = Array.from(document.images).filter(function (i) {
   return !i.complete || i.naturalWidth === 0;
 }).map(function (i) { return i.getAttribute('src'); });
+// The web fonts that the page declares (MathJax's, once it has run): the
+// first url() of each is what a browser without the fonts installed loads.
+var fonts = [];
+Array.from(document.styleSheets).forEach(function (sheet) {
+  var rules;
+  try { rules = sheet.cssRules; } catch (e) { return; }
+  Array.from(rules).forEach(function (rule) {
+    if (rule.type !== CSSRule.FONT_FACE_RULE) return;
+    var first = /url\(["']?([^"')]+)/.exec(rule.style.getPropertyValue('src'));
+    if (first) fonts.push(new URL(first[1], sheet.href || document.baseURI).href);
+  });
+});
 return {
   raw: raw, untypeset: untypeset, images: images, count: document.images.length,
   ids: Array.from(document.querySelectorAll('[id]')).map(function (e) { return e.id; }),
   links: Array.from(document.querySelectorAll('a[href]')).map(function (a) { return a.href; }),
   fragments: Array.from(document.querySelectorAll('.fragment[id]')).map(function (e) {
     return e.id; }),
-  math: document.querySelectorAll('span.math').length
+  math: document.querySelectorAll('span.math').length, fonts: fonts
 };
 '''
 
@@ -166,13 +171,11 @@ class SiteTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         set_viewport(DESKTOP)
-        drain_logs()
-        cls.reports, cls.problems, cls.seconds = {}, [], {}
+        problems_logged()
+        cls.reports, cls.problems = {}, []
         for page in pages():
-            started = time.time()
             open_page(page)
             cls.reports[page] = browser.execute_script(PAGE_REPORT)
-            cls.seconds[page] = time.time() - started
             cls.problems += ['%s: %s' % (page, p) for p in problems_logged()]
 
     def test_the_site_has_its_pages(self):
@@ -195,6 +198,16 @@ class SiteTest(unittest.TestCase):
                   for src in r['images']]
         self.assertEqual(broken, [])
         self.assertGreater(sum(r['count'] for r in self.reports.values()), 10)
+
+    def test_web_fonts_are_in_the_site(self):
+        # Chromium here finds MathJax's fonts installed (fonts-mathjax), so it
+        # never asks for the site's copies; a reader's browser may.
+        fonts = {font for r in self.reports.values() for font in r['fonts']}
+        paths = {f: urllib.parse.unquote(urllib.parse.urlsplit(f).path) for f in fonts}
+        missing = [f for f, path in paths.items()
+                   if not path.startswith(SITE + os.sep) or not os.path.isfile(path)]
+        self.assertEqual(missing, [])
+        self.assertTrue(any(f.endswith('.woff') for f in fonts), fonts)
 
     def test_internal_links_resolve(self):
         ids = {page: set(r['ids']) for page, r in self.reports.items()}

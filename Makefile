@@ -7,6 +7,7 @@
 #   make test UPTO=05  chapters 1..5's tests against the code as of chapter 5
 #                   (UPTO=last: every test against the whole library)
 #   make book       only the PDF
+#   make html       the web edition, build/html/ (tools/html.mk)
 #   make tangle     refresh tangled/, the readable tangle that is committed
 #   make lint       check the chapters' noweb/Markdown format
 #   make bench      chapter 6's BVH benchmark (tools/bench.mk): table + JSON
@@ -70,6 +71,7 @@ book: $(BUILD)/book.pdf
 
 $(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/weave.sh tools/weave.lua \
                    tools/fragments.lua tools/exercises.lua tools/preamble.tex \
+                   tools/tikz-preamble.tex \
                    tools/highlight.theme tools/layout_check.py \
                    $(wildcard figures/*) | lint
 	tools/weave.sh $(BUILD)/book book.md $(CHAPTERS)
@@ -82,3 +84,4 @@ include tools/exercises.mk
 include tools/bench.mk
 include tools/figures.mk
 include tools/grade.mk
+include tools/html.mk

@@ -108,7 +108,9 @@ end
 -- fourth-level heading has no number of its own; a reference to it names
 -- the numbered heading before it, as in the PDF.
 local function number_labels(doc)
-  local chapter, section, subsection = 0, 0, 0
+  -- Chapters are numbered 1, 2, ...; appendices (level-1 headings of class
+  -- appendix) A, B, ..., as in the PDF.
+  local chapter, section, subsection, chapters, appendices = 0, 0, 0, 0, 0
   local current, counts = nil, {}
   local function count(kind, label)
     counts[kind] = (counts[kind] or 0) + 1
@@ -121,7 +123,14 @@ local function number_labels(doc)
       if h.classes:includes('unnumbered') or (chapter == 0 and h.level > 1) then
         if h.level == 1 then current = nil end
       elseif h.level == 1 then
-        chapter, section, subsection, counts = chapter + 1, 0, 0, {}
+        if h.classes:includes('appendix') then
+          appendices = appendices + 1
+          chapter = string.char(string.byte('A') + appendices - 1)
+        else
+          chapters = chapters + 1
+          chapter = chapters
+        end
+        section, subsection, counts = 0, 0, {}
         current = tostring(chapter)
         shown = current
       elseif h.level == 2 then
@@ -517,7 +526,8 @@ local function paginate(blocks)
     elseif not g.header.attributes.number then
       add_page(page_file('', g.header), 'back', g.blocks, '')
     else
-      local chapter = string.format('%02d', tonumber(g.header.attributes.number))
+      local number = g.header.attributes.number
+      local chapter = tonumber(number) and string.format('%02d', tonumber(number)) or number
       if words(g.blocks) < SHORT_CHAPTER_WORDS then
         add_page(page_file(chapter, g.header), 'chapter', g.blocks, chapter)
       else

@@ -65,8 +65,9 @@ compile_commands.json: tangle
 
 book: $(BUILD)/book.pdf
 
-$(BUILD)/book.pdf: book.md $(CHAPTERS) tools/weave.sh tools/weave.lua tools/exercises.lua \
-                   tools/preamble.tex \
+$(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/weave.sh tools/weave.lua \
+                   tools/fragments.lua tools/exercises.lua tools/preamble.tex \
+                   tools/highlight.theme tools/layout_check.py \
                    $(wildcard figures/*) | lint
 	tools/weave.sh $(BUILD)/book book.md $(CHAPTERS)
 	cp $(BUILD)/book/book.pdf $@

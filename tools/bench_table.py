@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Turn the JSON of `make bench` into tables.
 
-    tools/bench_table.py figures/data/bvhbench-levels.json > table.dat
+    tools/bench_table.py figures/data/bvhbench-levels.json > figures/bvh-bench.dat
     tools/bench_table.py --configurations build/bvhbench.json \\
         build/bench/g++_-O3/bvhbench.json ... > table.md
 
-The first form writes a whitespace-separated table for gnuplot: one row per
+The first form writes a whitespace-separated table for a plot: one row per
 mesh (sorted by triangle count) with, for the SAH trees of the first and the
 final version, build time in ms and Mrays/s for the camera rays and for the
-incoherent rays.
+incoherent rays. The first line names the columns, which the book's plot
+(pgfplots, chapter 6) reads by name.
 
 The second compares configurations, one JSON file (one run of `make bench`)
 each: a Markdown table with one row per file, named by the compiler command
@@ -44,7 +45,7 @@ def sah_results(path, data):
     return results
 
 
-def gnuplot_table(path):
+def plot_table(path):
     rows = {}
     for r in sah_results(path, load(path)):
         if r.get('version') not in VERSIONS:
@@ -55,8 +56,8 @@ def gnuplot_table(path):
             if rays in r['rays']:
                 row[r['version'], rays] = r['rays'][rays]['mrays_per_s']
     columns = [(v, k) for v in VERSIONS for k in ('build',) + RAYS]
-    print('# triangles ' + ' '.join('%s_%s' % (v, k.split('.')[0])
-                                    for v, k in columns))
+    print('triangles ' + ' '.join('%s_%s' % (v, k.split('.')[0])
+                                  for v, k in columns))
     for triangles in sorted(rows):
         row = rows[triangles]
         missing = [c for c in columns if c not in row]
@@ -100,7 +101,7 @@ def main(argv):
     if len(argv) >= 2 and argv[0] == '--configurations':
         configuration_table(argv[1:])
     elif len(argv) == 1 and not argv[0].startswith('--'):
-        gnuplot_table(argv[0])
+        plot_table(argv[0])
     else:
         sys.exit(__doc__)
 

@@ -24,14 +24,12 @@ need texlive-latex-recommended have_sty fancyvrb.sty
 need texlive-fonts-recommended have_sty pcrr8t.tfm
 need texlive-latex-extra       have_sty framed.sty
 need texlive-pictures          have_sty tikz.sty
+need texlive-pictures          have_sty pgfplots.sty
 need lmodern                   have_sty lmodern.sty
 need libstb-dev    test -f /usr/include/stb/stb_image_write.h
-# tools/deps.sh figures: also what make figures needs (the book uses the
-# committed figures and does not).
-if [ "${1:-}" = figures ]; then
-    need gnuplot-nox command -v gnuplot
-fi
-
+# The book's citation style (book.md names the file).
+need citation-style-language-styles \
+    test -f /usr/share/citation-style-language/styles/chicago-author-date.csl
 [ ${#missing[@]} -eq 0 ] && exit 0
 packages=$(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')
 if [ "$(id -u)" -eq 0 ]; then

@@ -183,7 +183,7 @@ def write_kit(edition, src, out, book, chosen_numbers, build_book):
     copy_tree(os.path.join(ROOT, 'tools'), os.path.join(kit, 'tools'))
     copy_tree(os.path.join(ROOT, 'tests', 'tools'), os.path.join(kit, 'tests', 'tools'),
               TOOL_TESTS_LEFT_OUT)
-    for name in ('book.md', 'LICENSE', '.gitignore'):
+    for name in ('book.md', 'references.bib', 'LICENSE', '.gitignore'):
         copy_file(os.path.join(src, name), os.path.join(kit, name))
     for name in ('figures', 'data'):
         copy_tree(os.path.join(src, name), os.path.join(kit, name))

@@ -3,14 +3,16 @@
 # lrt/ are not part of liblrt.a). The rule builds the library as of the last
 # chapter, always with Float as float (the precision the figures show, whatever
 # FLOAT says), compiles the program against it and runs it from the
-# repository's root: it writes every rendered figure into figures/ as PNG.
-# Then it draws the plot of the BVH benchmark, figures/bvh-bench.png, from the
-# committed measurements figures/data/bvhbench-levels.json (see
-# figures/data/README.md) with gnuplot.
+# repository's root: it writes every rendered figure into figures/ as PNG,
+# at the size at which the book prints it (300 pixels per inch or more).
+# Then it turns the committed measurements figures/data/bvhbench-levels.json
+# (see figures/data/README.md) into the table figures/bvh-bench.dat, which
+# the book's plot of the BVH benchmark reads with pgfplots when it is woven.
 #
 # make check-figures: renders every figure again, in memory, and compares it
 # with the committed PNG within a tolerance (render/figures.cpp, "Running and
-# Checking"); CI runs it, so that the figures cannot drift from the code.
+# Checking"), and checks that the committed table is the one the measurements
+# give; CI runs it, so that the figures cannot drift from the code or data.
 #
 # make bench-levels: remeasures figures/data/bvhbench-levels.json (the bench of
 # chapter 6 on the bunny subdivided 0 to 4 times; a few minutes). It needs the
@@ -36,15 +38,18 @@ figures-build: lint
 	    $(FIGURES_DIR)/src/render/figures.cpp $(FIGURES_DIR)/liblrt.a \
 	    -o $(FIGURES_BIN)
 
+BENCH_TABLE := figures/bvh-bench.dat
+
 figures: figures-build
-	@tools/deps.sh figures
 	$(FIGURES_BIN) --out figures
-	python3 tools/bench_table.py $(BENCH_LEVELS_JSON) > $(BUILD)/bvhbench-levels.dat
-	gnuplot -e "datafile='$(BUILD)/bvhbench-levels.dat'" \
-	    -e "outfile='figures/bvh-bench.png'" figures/bvh-bench.gp
+	python3 tools/bench_table.py $(BENCH_LEVELS_JSON) > $(BENCH_TABLE)
 
 check-figures: figures-build
 	$(FIGURES_BIN) --check figures
+	@python3 tools/bench_table.py $(BENCH_LEVELS_JSON) | cmp -s - $(BENCH_TABLE) || \
+	    { echo "check-figures: $(BENCH_TABLE) is not the table of" \
+	           "$(BENCH_LEVELS_JSON); run make figures and commit it" >&2; exit 1; }
+	@echo "$(BENCH_TABLE)      ok: the table of $(BENCH_LEVELS_JSON)"
 
 bench-levels: bench-build
 	python3 $(BENCH_GENERATOR) --out $(BENCH_LEVELS_DATA) --levels 0,1,2,3,4

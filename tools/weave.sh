@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # weave.sh OUTDIR BOOK.md CHAPTER.md...: the book as OUTDIR/book.pdf.
 #
-# pandoc with tools/weave.lua writes LaTeX; pdflatex runs until the page
-# references settle. The build fails on any LaTeX error, on references that
-# stay undefined (no "??" in the book) and on code wider than its column.
+# pandoc with tools/weave.lua writes LaTeX, with citations and References by
+# pandoc's citeproc (the bibliography and its style are named in BOOK.md's
+# metadata); pdflatex runs until the page references settle. The build fails
+# on any LaTeX error, on references or citations that stay undefined (no "??"
+# in the book), on code wider than its column, and on a fragment that came
+# apart on the page (tools/layout_check.py).
 # Run from the repository root, so figure paths resolve as in the chapters.
 set -euo pipefail
 out=$1; shift
@@ -14,15 +17,25 @@ tools=$(dirname "$0")
 # writer and pandoc would not emit its highlighting macros: take them from a
 # template that prints only those.
 printf '$highlighting-macros$\n' > "$out/macros.template"
+# tools/highlight.theme prints in greyscale: bold keywords, grey comments.
 printf '```cpp\nint x;\n```\n' |
-    pandoc -s -t latex --template="$out/macros.template" > "$out/preamble.tex"
+    pandoc -s -t latex --highlight-style="$tools/highlight.theme" \
+        --template="$out/macros.template" > "$out/preamble.tex"
 cat "$tools/preamble.tex" >> "$out/preamble.tex"
 
+# citeproc runs after weave.lua, which resolves @sec:, @fig:, @eq: and @tbl:
+# itself; citeproc only warns about a key that the bibliography lacks.
 pandoc "$@" --from markdown --lua-filter "$tools/exercises.lua" \
-    --lua-filter "$tools/weave.lua" \
+    --lua-filter "$tools/weave.lua" --citeproc \
     --top-level-division=chapter --number-sections --toc \
     --include-in-header="$out/preamble.tex" \
-    --standalone -o "$out/book.tex"
+    --standalone -o "$out/book.tex" 2> "$out/pandoc.err" || {
+    cat "$out/pandoc.err" >&2; exit 1; }
+cat "$out/pandoc.err" >&2
+if grep -q 'Citeproc: citation .* not found' "$out/pandoc.err"; then
+    echo "weave: citations of keys that the bibliography does not have" >&2
+    exit 1
+fi
 
 log=$out/book.log
 for pass in 1 2 3 4; do
@@ -48,4 +61,13 @@ if grep -A1 'Overfull \\hbox' "$log" | grep -q '\\T1/lmtt'; then
     echo "weave: code wider than its column" >&2
     status=1
 fi
+# Raster images must print at 300 pixels per inch or more; pdfimages gives
+# each image's resolution at its printed size (columns 13 and 14).
+low=$(pdfimages -list "$out/book.pdf" | awk 'NR > 2 && ($13 < 300 || $14 < 300)')
+if [ -n "$low" ]; then
+    printf '%s\n' "$low" >&2
+    echo "weave: images printed at less than 300 ppi (page, ..., x-ppi, y-ppi above)" >&2
+    status=1
+fi
+python3 "$tools/layout_check.py" "$out/book.layout" || status=1
 exit $status

@@ -61,7 +61,7 @@ std::vector<std::shared_ptr<Primitive>> BunnyPrimitives(
     return prims;
 }
 // Figure Program Helpers
-Image Tile(const std::vector<Image> &panels, int columns, int gap = 8) {
+Image Tile(const std::vector<Image> &panels, int columns, int gap = 20) {
     int w = panels[0].Width(), h = panels[0].Height();
     int rows = (int(panels.size()) + columns - 1) / columns;
     Image out(columns * w + (columns - 1) * gap, rows * h + (rows - 1) * gap,
@@ -106,7 +106,7 @@ Image PartialSpheres() {
                   Translate(Vector3f(s.x, 0, 1.15)) * RotateZ(s.rotateZ), 1,
                   s.zMin, s.zMax, s.phiMax, s.albedo);
     PinholeCamera camera = LookAtCamera(Point3f(0, -10, 5), Point3f(0, 0, 0.8),
-                                        22, 720, 280);
+                                        22, 1872, 728);
     return Render(scene, camera, TwoLights(5, Point3f(7, -5, 11), 12));
 }
 // Figure Scenes
@@ -119,7 +119,7 @@ Image Disks() {
             Translate(Vector3f(-1.3, 0, 1.4)) * RotateX(55) * RotateZ(-45), 0,
             1, 0.3, 270, kOrange);
     PinholeCamera camera = LookAtCamera(Point3f(0, -7, 4.2), Point3f(0, 0, 1),
-                                        28, 560, 300);
+                                        28, 1512, 810);
     return Render(scene, camera, TwoLights(3.5, Point3f(5, -4, 9), 8));
 }
 // Figure Scenes
@@ -129,7 +129,7 @@ Image Bunny() {
     scene.Add(std::make_shared<FastBVHAccel>(BunnyPrimitives(&scene)),
               RGB(0.80, 0.72, 0.60));
     PinholeCamera camera = LookAtCamera(Point3f(10, -26, 12),
-                                        Point3f(0, 0, 4.3), 25, 480, 400);
+                                        Point3f(0, 0, 4.3), 25, 1152, 960);
     return Render(scene, camera, TwoLights(14, Point3f(14, -18, 26), 30));
 }
 // Figure Scenes
@@ -143,9 +143,10 @@ void AddSphereRow(RenderScene *scene) {
                   1, -1, 1, 360, colors[i]);
 }
 
-PinholeCamera RowCamera(Float zNear = 0, Float zFar = Infinity) {
-    return LookAtCamera(kRowEye, Point3f(0, 13, 0.5), 32, 360, 270, zNear,
-                        zFar);
+PinholeCamera RowCamera(int width, int height, Float zNear = 0,
+                        Float zFar = Infinity) {
+    return LookAtCamera(kRowEye, Point3f(0, 13, 0.5), 32, width, height,
+                        zNear, zFar);
 }
 
 Image FalloffComparison() {
@@ -160,7 +161,7 @@ Image FalloffComparison() {
         options.falloff = f;
         options.background = kWhite;
         options.headlight = Float(0.9) * std::pow(t0, Float(k++));
-        panels.push_back(Render(scene, RowCamera(), options));
+        panels.push_back(Render(scene, RowCamera(612, 459), options));
     }
     return Tile(panels, 3);
 }
@@ -169,11 +170,11 @@ Image Clipping() {
     RenderScene scene;
     AddSphereRow(&scene);
     RenderOptions options = TwoLights(5, Point3f(8, 2, 12), 10);
-    PinholeCamera plain = RowCamera();
+    PinholeCamera plain = RowCamera(936, 702);
     Float zNear = plain.Depth(Point3f(1.6, 6, 1));
     Float zFar = plain.Depth(Point3f(-1.6, 18, 1));
     return Tile({Render(scene, plain, options),
-                 Render(scene, RowCamera(zNear, zFar), options)},
+                 Render(scene, RowCamera(936, 702, zNear, zFar), options)},
                 2);
 }
 // Figure Scenes
@@ -185,8 +186,8 @@ Image BiasPanel(Float s, ShadowRays shadowRays) {
     AddDisk(&scene, Translate(Vector3f(1.4 * s, -0.8 * s, 0)), 0.08 * s,
             1.1 * s, 0, 360, kBlue);
     PinholeCamera camera = LookAtCamera(Point3f(0, -9 * s, 5.5 * s),
-                                        Point3f(0, 0.2 * s, 0.3 * s), 34, 400,
-                                        260);
+                                        Point3f(0, 0.2 * s, 0.3 * s), 34, 920,
+                                        598);
     RenderOptions options = TwoLights(3 * s, Point3f(12 * s, 2 * s, 2.6 * s),
                                       16 * s);
     options.shadowRays = shadowRays;
@@ -206,7 +207,7 @@ Image HeatMaps() {
     RenderScene scene;
     auto prims = BunnyPrimitives(&scene);
     PinholeCamera camera = LookAtCamera(Point3f(10, -26, 12),
-                                        Point3f(0, 0, 4.6), 24, 300, 300);
+                                        Point3f(0, 0, 4.6), 24, 690, 690);
     const int maxVisits = 120;
     std::vector<Image> panels;
     using SM = BVHAccel::SplitMethod;
@@ -223,7 +224,7 @@ Image HeatMaps() {
     }
     // Append a color bar to the tiled heat maps
     Image maps = Tile(panels, 2);
-    const int gap = 8, barHeight = 16;
+    const int gap = 20, barHeight = 40;
     Image out(maps.Width(), maps.Height() + gap + barHeight, kWhite);
     for (int y = 0; y < maps.Height(); ++y)
         for (int x = 0; x < maps.Width(); ++x) out(x, y) = maps(x, y);

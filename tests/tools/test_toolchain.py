@@ -1,12 +1,17 @@
 """Tests of the toolchain itself: the lint's messages, the tangle's line
-directives, and the weave filter's cross-check against noweb.
+directives, the weave filter (its cross-check against noweb, footers, code,
+examples of fragments, captions, citations) and the check of the woven
+book's page layout.
 
 Each broken chapter under lint/ shows one mistake; its test asserts the exact
 file:line the lint names, so a message that drifts or points nowhere fails.
 """
 import os
+import random
+import re
 import shutil
 import subprocess
+import sys
 import tempfile
 import unittest
 
@@ -14,6 +19,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 TOOLS = os.path.join(ROOT, 'tools')
 LINT_CASES = os.path.join(HERE, 'lint')
+
+sys.path.insert(0, TOOLS)
+import layout_check  # noqa: E402
 
 
 def run(cmd, cwd=ROOT):
@@ -151,16 +159,20 @@ class TangleTest(unittest.TestCase):
 
 
 class WeaveTest(unittest.TestCase):
-    """The filter's own reading of the chunks must match noweb's."""
+    """The filter's own reading of the chunks must match noweb's; what it
+    writes for footers, code, examples, captions and citations."""
 
-    def weave(self, text):
+    def weave(self, text, *options, files=None):
         tmp = tempfile.mkdtemp()
         self.addCleanup(shutil.rmtree, tmp)
+        for name, content in (files or {}).items():
+            with open(os.path.join(tmp, name), 'w') as f:
+                f.write(content)
         chapter = os.path.join(tmp, '01-weave.md')
         with open(chapter, 'w') as f:
             f.write(text)
-        return run(['pandoc', chapter, '--lua-filter', os.path.join(TOOLS, 'weave.lua'),
-                    '-t', 'latex'])
+        return run(['pandoc', chapter, '--lua-filter', os.path.join(TOOLS, 'weave.lua')] +
+                   list(options) + ['-t', 'latex'], cwd=tmp)
 
     def test_chunks_are_numbered_and_linked(self):
         with open(os.path.join(LINT_CASES, 'good.md')) as f:
@@ -193,6 +205,226 @@ class WeaveTest(unittest.TestCase):
         self.assertIn('\\begin{equation} a = b \\label{eq:ab}\\end{equation}',
                       result.stdout)
         self.assertIn('Equation~(\\ref*{eq:ab})', result.stdout)
+
+
+    def test_footer_names_the_neighbouring_pieces(self):
+        # Four pieces of one fragment: each footer names the piece before and
+        # the piece after it, not the whole chain.
+        pieces = ''.join('```cpp\n<<Body>>=\nint x%d;\n@\n```\n\n' % i for i in range(4))
+        result = self.weave('# Ch\n\n```cpp\n<<lrt/x.h>>=\n<<Body>>\n@\n```\n\n' + pieces)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        footers = re.findall(r'\\fragfooter\{(.*)\}\\end\{fragment\}', result.stdout)
+        self.assertEqual(len(footers), 5)
+        first, second, third, last = footers[1:]
+        self.assertIn('\\fragnote{Continued in}{\\chunkref{chunk:1.3}{1.3}}', first)
+        self.assertNotIn('Continues', first)
+        self.assertIn('\\fragnote{Continues}{\\chunkref{chunk:1.2}{1.2}}', second)
+        self.assertIn('\\fragnote{Continued in}{\\chunkref{chunk:1.4}{1.4}}', second)
+        self.assertNotIn('chunk:1.5', second)
+        self.assertIn('\\fragnote{Continues}{\\chunkref{chunk:1.3}{1.3}}', third)
+        self.assertIn('\\fragnote{Continues}{\\chunkref{chunk:1.4}{1.4}}', last)
+        self.assertNotIn('Continued in', last)
+
+    def test_fragment_records_its_lines_of_code(self):
+        # The page layout keeps lines with the header and footer by number.
+        result = self.weave('# Ch\n\n```cpp\n<<lrt/x.h>>=\nint a;\n\nint b;\n@\n```\n')
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn('\\begin{fragment}{chunk:1.1}{3}\\fragheader{chunk:1.1}', result.stdout)
+
+    def test_caret_in_code_is_the_ascii_character(self):
+        # \\^{} is a circumflex accent over nothing, a raised hat; \\lrtcaret{}
+        # is the character as code fonts draw it.
+        result = self.weave('# Ch\n\nSo `a ^ b` flips.\n\n```cpp\n<<lrt/x.h>>=\n'
+                            'int f(int a, int b) { return a ^ b; }\n@\n```\n\n'
+                            '```c++\nx ^= 1;\n```\n')
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertNotIn('\\^{}', result.stdout)
+        self.assertEqual(result.stdout.count('\\lrtcaret{}'), 3)
+
+    def test_fragment_examples_come_from_the_chunks(self):
+        text = ('# Ch\n\n`Body`{.fragment-header}\n\nThe number `Body`{.fragment-number} '
+                'and a use, `Body`{.fragment-use}.\n\n```cpp\n<<lrt/x.h>>=\nint a;\n'
+                '<<Body>>\n@\n```\n\n```cpp\n<<Body>>=\nint b;\n@\n```\n')
+        result = self.weave(text)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        body_id = re.search(r'\\fragname\{(f\d+)\}\{Body\}', result.stdout).group(1)
+        self.assertIn('\\fragheadersample{\\fragheaderline{%s}{chunk:1.2}{1.2}{def}}' % body_id,
+                      result.stdout)
+        self.assertIn('The number \\hyperref[chunk:1.2]{1.2}', result.stdout)
+        self.assertIn('a use, \\fraguse{%s}.' % body_id, result.stdout)
+        stale = self.weave(text.replace('`Body`{.fragment-use}', '`Bodies`{.fragment-use}'))
+        self.assertNotEqual(stale.returncode, 0)
+        self.assertIn('<<Bodies>>, which no chunk defines', stale.stderr)
+
+    def test_figure_has_a_short_caption_for_the_list_of_figures(self):
+        result = self.weave('# Ch\n\nSee @fig:a.\n\n![A box in the plane $x = 1.5$. Its '
+                            'corners are marked, e.g. the lowest.](a.png){#fig:a}\n\n'
+                            '```{=latex}\n\\begin{figure}\\caption{One sentence only.}'
+                            '\\label{fig:b}\\end{figure}\n```\n')
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn('\\caption[{A box in the plane \\(x = 1.5\\).}]{A box in the plane',
+                      result.stdout)
+        self.assertIn('\\caption{One sentence only.}', result.stdout)
+        # The first citation of a float is recorded for the layout check.
+        self.assertIn('\\floatcite{fig:a}\\hyperref[fig:a]{Figure~\\ref*{fig:a}}',
+                      result.stdout)
+
+    def test_citations_and_references(self):
+        bib = ('@article{Kay1986Ray, author = {Timothy L. Kay and James T. Kajiya},\n'
+               'title = {Ray Tracing Complex Scenes}, journal = {Computer Graphics},\n'
+               'year = {1986}}\n')
+        result = self.weave('---\nbibliography: refs.bib\n---\n\n# Ch {#sec:ch}\n\n'
+                            '@Kay1986Ray introduced slabs (@sec:ch).\n', '--citeproc',
+                            files={'refs.bib': bib})
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn('Kay and Kajiya', result.stdout)
+        self.assertIn('Chapter~\\ref*{sec:ch}', result.stdout)   # left to weave.lua
+        refs = result.stdout.index('*{References}')
+        self.assertLess(refs, result.stdout.index('Ray Tracing Complex'))
+        self.assertLess(result.stdout.index('\\backmatter'), refs)
+        self.assertLess(refs, result.stdout.index('\\begin{fragmentindex}'))
+
+
+class LayoutCheckTest(unittest.TestCase):
+    """tools/layout_check.py on layout records written by hand."""
+
+    WHOLE = [('header', 'chunk:2.1', '10'), ('first', 'chunk:2.1', '10'),
+             ('last', 'chunk:2.1', '11'), ('footer', 'chunk:2.1', '11')]
+
+    def problems(self, events, labels=None):
+        return layout_check.check(events, labels or {})
+
+    def test_a_fragment_across_pages_is_fine(self):
+        self.assertEqual(self.problems(self.WHOLE), [])
+
+    def test_stranded_header(self):
+        events = [('header', 'chunk:2.1', '10'), ('first', 'chunk:2.1', '11'),
+                  ('last', 'chunk:2.1', '11'), ('footer', 'chunk:2.1', '11')]
+        self.assertEqual(self.problems(events), [
+            'page 10 ends with the header of fragment 2.1, whose first lines of code '
+            'are on page 11'])
+
+    def test_stranded_footer(self):
+        events = self.WHOLE[:3] + [('footer', 'chunk:2.1', '12')]
+        self.assertEqual(self.problems(events), [
+            'page 12 opens with the footer of fragment 2.1, cut from its last lines of '
+            'code on page 11'])
+
+    def test_float_inside_a_fragment(self):
+        events = self.WHOLE[:2] + [('float', 'figure 2.4', '11')] + self.WHOLE[2:] + \
+                 [('float', 'figure 2.5', '11')]
+        self.assertEqual(self.problems(events), [
+            'page 11: figure 2.4 lands inside fragment 2.1 (pages 10-11)'])
+
+    def test_float_far_from_its_first_citation(self):
+        labels = {'figure 2.4': 'fig:far', 'figure 2.5': 'fig:near',
+                  'figure 2.6': 'fig:early'}
+        events = [('cite', 'fig:far', '10'), ('cite', 'fig:near', '10'),
+                  ('cite', 'fig:far', '13'), ('float', 'figure 2.5', '13'),
+                  ('float', 'figure 2.4', '14'), ('float', 'figure 2.6', '15'),
+                  ('cite', 'fig:early', '17')] + \
+                 [(k, w, p) for k, w, p in self.WHOLE]
+        self.assertEqual(self.problems(events, labels), [
+            'page 14: figure 2.4 (fig:far) is printed 4 pages after its first citation '
+            'on page 10',
+            'page 15: figure 2.6 (fig:early) is printed 2 pages before its first '
+            'citation on page 17'])
+
+    def test_float_never_cited(self):
+        events = [('float', 'figure 3.3', '118'), ('float', 'figure 3.4', '119')]
+        self.assertEqual(self.problems(events, {'figure 3.3': 'fig:disks'}), [
+            'page 118: figure 3.3 (fig:disks) is never cited'])
+
+    def test_missing_record_of_a_fragment(self):
+        events = self.WHOLE[:1] + self.WHOLE[3:]
+        problems = self.problems(events)
+        self.assertEqual(len(problems), 1)
+        self.assertIn('fragment 2.1: no first or last', problems[0])
+
+
+def layout_fixture(keep):
+    """A chapter of 24 fragments of 2 to 9 lines between paragraphs of random
+    length, one of 90 lines after a figure too tall for the rest of its page,
+    and a fourth-level heading that a reference cites. With keep false it
+    turns the keep rules off (\\lrtkeepfalse), as the book was set before."""
+    rnd = random.Random(7)
+    out = ['# Fixture {#sec:fixture}', '']
+    if not keep:
+        out += ['```{=latex}', '\\lrtkeepfalse', '```', '']
+    out += ['## Section', '', '### Subsection', '', '#### Paragraph {#sec:paragraph}', '',
+            'See @sec:paragraph.', '']
+    words = 'the ray meets the box where its slabs overlap and the test says so'.split()
+    uses = []
+    for k in range(24):
+        lines = rnd.randint(2, 9)
+        out += [' '.join(rnd.choice(words) for _ in range(rnd.randint(20, 120))), '']
+        if k == 12:
+            out += ['```{=latex}', '\\begin{figure}\\centering'
+                    '\\rule{2cm}{0.45\\textheight}\\caption{A tall figure.}\\end{figure}',
+                    '```', '']
+            lines = 90
+        uses.append('Piece %d' % k)
+        out += ['```cpp', '<<Piece %d>>=' % k]
+        out += ['int v%d_%d = %d;' % (k, i, i) for i in range(lines)] + ['@', '```', '']
+    out += ['```cpp', '<<lrt/fixture.h>>='] + ['<<%s>>' % u for u in uses] + ['@', '```', '']
+    return '\n'.join(out)
+
+
+class LayoutFixtureTest(unittest.TestCase):
+    """The woven fixture book passes the layout check; the same book set
+    without the keep rules fails it, naming pages and fragments."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp()
+        cls.book = os.path.join(cls.tmp, 'book.md')
+        with open(cls.book, 'w') as f:
+            f.write('---\ntitle: "Layout fixture"\ndocumentclass: book\n'
+                    'classoption: [11pt, openany]\n---\n')
+        cls.results = {}
+        for keep in (True, False):
+            chapter = os.path.join(cls.tmp, '01-fixture-%s.md' % keep)
+            with open(chapter, 'w') as f:
+                f.write(layout_fixture(keep))
+            out = os.path.join(cls.tmp, 'out-%s' % keep)
+            cls.results[keep] = (out, run([os.path.join(TOOLS, 'weave.sh'), out, cls.book,
+                                           chapter]))
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp)
+
+    def test_book_kept_whole_passes(self):
+        out, result = self.results[True]
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertNotIn('layout:', result.stderr)
+        text = run(['pdftotext', os.path.join(out, 'book.pdf'), '-']).stdout
+        # The fourth-level heading has no number; the reference names the
+        # numbered section around it.
+        self.assertIn('See Section 1.1.1.', text)
+        self.assertNotIn('1.1.1.1', text)
+
+    def test_book_set_loose_fails_naming_page_and_fragment(self):
+        _, result = self.results[False]
+        self.assertNotEqual(result.returncode, 0)
+        messages = [l for l in result.stderr.splitlines() if l.startswith('layout: ')]
+        self.assertTrue(any(re.match(r'layout: page \d+ ends with the header of fragment '
+                                     r'1\.\d+, whose first lines of code are on page \d+$',
+                                     m) for m in messages), result.stderr)
+        self.assertTrue(any(re.match(r'layout: page \d+ opens with the footer of fragment '
+                                     r'1\.\d+', m) for m in messages), result.stderr)
+        self.assertTrue(any(re.match(r'layout: page \d+: figure 1\.1 lands inside fragment '
+                                     r'1\.13 ', m) for m in messages), result.stderr)
+
+    def test_citation_of_a_missing_key_fails(self):
+        chapter = os.path.join(self.tmp, '01-cite.md')
+        with open(chapter, 'w') as f:
+            f.write('# Ch\n\nAs @Nobody2000 said.\n\n```cpp\n<<lrt/x.h>>=\nint a;\n@\n```\n')
+        result = run([os.path.join(TOOLS, 'weave.sh'), os.path.join(self.tmp, 'cite'),
+                      self.book, chapter])
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn('Nobody2000', result.stderr)
+        self.assertIn('bibliography does not have', result.stderr)
 
 
 if __name__ == '__main__':

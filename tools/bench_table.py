@@ -45,7 +45,7 @@ def sah_results(path, data):
     return results
 
 
-def gnuplot_table(path):
+def plot_table(path):
     rows = {}
     for r in sah_results(path, load(path)):
         if r.get('version') not in VERSIONS:
@@ -101,7 +101,7 @@ def main(argv):
     if len(argv) >= 2 and argv[0] == '--configurations':
         configuration_table(argv[1:])
     elif len(argv) == 1 and not argv[0].startswith('--'):
-        gnuplot_table(argv[0])
+        plot_table(argv[0])
     else:
         sys.exit(__doc__)
 

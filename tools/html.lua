@@ -92,6 +92,15 @@ local function json(value)
   fail('cannot write a ' .. kind .. ' as JSON')
 end
 
+-- Whether raw LaTeX only decides where a printed page ends (\newpage,
+-- \clearpage, or such a choice made by \ifdim on the space left on the
+-- page): a web page has no such end, so there is nothing to show.
+local function page_break_only(text)
+  local rest = text:gsub('\\ifdim.-\\fi', ''):gsub('\\par', '')
+                   :gsub('\\newpage', ''):gsub('\\clearpage', ''):gsub('%s', '')
+  return rest == ''
+end
+
 -------------------------------------------------------------------------------
 -- Numbers: headings, figures, tables and equations, as LaTeX numbers them
 
@@ -630,6 +639,7 @@ function Pandoc(doc)
       if block.format ~= 'latex' then return nil end
       if block.text:find('\\begin{figure}', 1, true) then return tikz_figure(block.text) end
       if block.text:find('\\begin{table}', 1, true) then return latex_table(block.text) end
+      if page_break_only(block.text) then return {} end
       fail('raw LaTeX that the web edition cannot show: ' .. block.text:sub(1, 200))
     end,
   })

@@ -717,3 +717,24 @@ class GradeTest(unittest.TestCase):
 
 if __name__ == '__main__':
     unittest.main()
+
+
+class SandboxUidTest(unittest.TestCase):
+    """Graders running at once give their workers different uids, so that
+    one student's fork bomb cannot use up the process limit of another's
+    worker (seen in a batch: the other worker's sandbox failed to start)."""
+
+    def test_graders_running_at_once_take_different_uids(self):
+        code = ('import sys, time; sys.path.insert(0, %r); import sandbox; '
+                'print(sandbox.sandbox_uid(), flush=True); time.sleep(3)'
+                % os.path.join(ROOT, 'tools'))
+        first = subprocess.Popen([sys.executable, '-c', code], stdout=subprocess.PIPE,
+                                 text=True)
+        second = subprocess.Popen([sys.executable, '-c', code], stdout=subprocess.PIPE,
+                                  text=True)
+        uids = {int(first.stdout.readline()), int(second.stdout.readline())}
+        first.wait()
+        second.wait()
+        first.stdout.close()
+        second.stdout.close()
+        self.assertEqual(len(uids), 2, uids)

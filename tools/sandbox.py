@@ -52,7 +52,6 @@ def _is_root():
 # the other student's worker from starting. Each grader process therefore
 # takes a uid of its own from this range, held by a lock while it runs.
 SANDBOX_UIDS = range(SANDBOX_UID, SANDBOX_UID + 256)
-_held_uid_lock = []
 
 
 def _uid_lock_dir():
@@ -82,8 +81,7 @@ def sandbox_uid():
         except OSError:
             os.close(fd)
             continue
-        _held_uid_lock.append(fd)   # held until this process ends
-        return uid
+        return uid      # fd stays open, and the lock held, until this process ends
     raise RuntimeError('no free sandbox uid: %d graders are running' % len(SANDBOX_UIDS))
 
 

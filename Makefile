@@ -35,18 +35,35 @@ export CHAPTERS BUILD FLOAT SANITIZE
 
 .PHONY: all deps lint tangle lib test book clean
 
-all: lint tangle lib bench-build compile_commands.json book
+all: $(LINTED) tangle lib bench-build compile_commands.json book
 
 deps:
 	@tools/deps.sh
 
-lint: | deps
-	python3 tools/lint.py --book $(CHAPTERS)
+# make lint always checks. What needs the checked chapters depends on a stamp
+# instead, which the checks renew only when a chapter, a test or a checker
+# changed, or a file was added or removed (the list of inputs, kept by cpif).
+LINT_INPUTS := $(CHAPTERS) $(sort $(wildcard tests/ch[0-9][0-9]/* tests/hidden/ch[0-9][0-9]/*))
+LINT = python3 tools/lint.py --book $(CHAPTERS) && \
+       python3 tools/exercises.py lint $(CHAPTERS)
+LINTED := $(BUILD)/linted.stamp
 
-tangle: lint
+lint: | deps
+	$(LINT)
+
+$(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/lint.py tools/exercises.py | deps
+	$(LINT)
+	@touch $@
+
+.PHONY: FORCE
+$(BUILD)/lint-inputs.list: FORCE
+	@mkdir -p $(@D)
+	@echo $(LINT_INPUTS) | cpif $@
+
+tangle: $(LINTED)
 	python3 tools/tangle.py --out tangled $(CHAPTERS)
 
-lib: lint
+lib: $(LINTED)
 	$(ASOF) ASOF=$(LAST) tangle
 	$(ASOF) ASOF=$(LAST) -j$(JOBS) lib
 
@@ -56,14 +73,14 @@ lib: lint
 # depend on FLOAT or SANITIZE. The appendix (08) is a program, the benchmark,
 # whose tests run it from Python.
 PYTHON_TESTS_08 := tests/tools/test_bench.py
-test: lint
+test: $(LINTED)
 	@bins=(); \
 	for n in $(PREFIXES); do \
 	    $(ASOF) ASOF=$$n ONLY=$(CH) tangle; \
 	    $(ASOF) ASOF=$$n ONLY=$(CH) -j$(JOBS) tests; \
 	    bins+=($$($(ASOF) -s ASOF=$$n ONLY=$(CH) list-tests)); \
 	done; \
-	python3 tools/runtests.py $(if $(FLOAT)$(SANITIZE),,$(if $(CH),$(addprefix \
+	python3 tools/runtests.py --jobs $(JOBS) $(if $(FLOAT)$(SANITIZE),,$(if $(CH),$(addprefix \
 	    --python-tests ,$(PYTHON_TESTS_$(CH))),--python-tests tests/tools)) "$${bins[@]}"
 
 compile_commands.json: tangle
@@ -75,7 +92,7 @@ $(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/weave.sh
                    tools/fragments.lua tools/exercises.lua tools/preamble.tex \
                    tools/tikz-preamble.tex \
                    tools/highlight.theme tools/layout_check.py \
-                   $(wildcard figures/*) | lint
+                   $(wildcard figures/*) | $(LINTED)
 	tools/weave.sh $(BUILD)/book book.md $(CHAPTERS)
 	cp $(BUILD)/book/book.pdf $@
 

@@ -34,9 +34,22 @@ TEST_BINS := $(foreach n,$(TEST_NUMBERS),$(DIR)/tests/ch$(n))
 
 .PHONY: tangle lib tests list-tests
 
-tangle:
+# The tangle is redone only when a chapter or a tool it runs changed (tangle.py
+# rewrites only the files whose text changed, so make then recompiles only what
+# includes them).
+tangle: $(DIR)/tangled.stamp
+$(DIR)/tangled.stamp: $(ASOF_CHAPTERS) $(DIR)/chapters.list tools/tangle.py \
+                      tools/exercise_filter.py tools/fragment_comments.py
 	@mkdir -p $(SRC)
 	python3 tools/tangle.py --line-directives --out $(SRC) $(ASOF_CHAPTERS)
+	@touch $@
+
+# The list of chapters, rewritten only when it changes (a chapter renamed or
+# removed is older than the stamp, yet the tangle must be redone).
+.PHONY: FORCE
+$(DIR)/chapters.list: FORCE
+	@mkdir -p $(@D)
+	@echo $(ASOF_CHAPTERS) | cpif $@
 
 lib: $(if $(LIB_OBJS),$(LIB))
 
@@ -49,13 +62,36 @@ $(LIB): $(LIB_OBJS)
 	rm -f $@
 	ar rcs $@ $^
 
-$(DIR)/obj/lib/%.o: $(SRC)/%.cpp
-	@mkdir -p $(@D)
-	$(CXX) $(CXXFLAGS) -I$(SRC) -MMD -MP -c $< -o $@
+$(DIR)/obj/lib/%.o: $(SRC)/%.cpp | compile-links
+	$(call compile,src/$*.cpp)
 
-$(DIR)/obj/tests/%.o: tests/%.cpp
-	@mkdir -p $(@D)
-	$(CXX) $(CXXFLAGS) -I$(SRC) -Itests -MMD -MP -c $< -o $@
+$(DIR)/obj/tests/%.o: tests/%.cpp | compile-links
+	$(call compile,tests/$*.cpp,-Itests)
+
+# Every compile runs in $(CC_DIR), where src is a link to the tangle and tests
+# one to the test sources, so a translation unit names the same paths
+# (src/lrt/..., tests/chNN/..., and the chapters through #line) as of every
+# chapter and in every checkout. ccache, where installed, then compiles a test
+# once for all the chapters whose code it sees unchanged, and a kit's copy of
+# the book's code once for the kit and the book. CCACHE_NOHASHDIR lets it ignore
+# the directory, which the debug information does not record either
+# (-fdebug-prefix-map). Diagnostics name tests/... and chapters/..., paths that
+# hold from the repository too. The dependency files come out relative to
+# $(CC_DIR); sed makes them relative to the repository.
+CC_DIR := $(DIR)/cc
+CCACHE := $(shell command -v ccache)
+define compile
+@mkdir -p $(@D)
+cd $(CC_DIR) && CCACHE_NOHASHDIR=1 $(CCACHE) $(CXX) $(CXXFLAGS) \
+    -fdebug-prefix-map=$(abspath $(CC_DIR))=. -Isrc $(2) -MMD -MP -MT $@ -c $(1) -o $(abspath $@)
+sed -i -E 's#(^| )(src|tests|hidden)/#\1$(CC_DIR)/\2/#g' $(basename $@).d
+endef
+
+.PHONY: compile-links
+compile-links:
+	@mkdir -p $(CC_DIR)
+	@ln -sfn ../src $(CC_DIR)/src
+	@ln -sfn $(abspath tests) $(CC_DIR)/tests
 
 define test_binary
 $(DIR)/tests/ch$(1): $(patsubst tests/%.cpp,$(DIR)/obj/tests/%.o,$(wildcard \

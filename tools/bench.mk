@@ -67,7 +67,7 @@ bench-compiler:
 # make (the build command) compiles the benchmark too, in the default
 # configuration, so that it cannot rot between measurements; only make bench
 # runs it.
-bench-build: lint bench-compiler
+bench-build: $(LINTED) bench-compiler
 	$(BENCH_ASOF) tangle
 	$(BENCH_ASOF) -j$(JOBS) lib
 	@mkdir -p $(dir $(BENCH_BIN))

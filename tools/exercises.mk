@@ -26,12 +26,10 @@ exercises: | deps
 validate-exercises: exercises
 	python3 tools/exercise_kits.py validate --out $(EXERCISES_OUT)
 
-lint: lint-exercises
-
 lint-exercises:
 	python3 tools/exercises.py lint $(filter %.md,$(CHAPTERS))
 
-test-hidden: lint
+test-hidden: $(LINTED)
 	@bins=(); \
 	for n in $(PREFIXES); do \
 	    $(ASOF) ASOF=$$n ONLY=$(CH) tangle; \

@@ -30,7 +30,7 @@ BENCH_LEVELS_JSON := figures/data/bvhbench-levels.json
 
 .PHONY: figures figures-build check-figures bench-levels
 
-figures-build: lint
+figures-build: $(LINTED)
 	$(FIGURES_ASOF) tangle
 	$(FIGURES_ASOF) -j$(JOBS) lib
 	@mkdir -p $(dir $(FIGURES_BIN))

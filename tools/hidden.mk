@@ -21,9 +21,14 @@ hidden-tests: $(HIDDEN_BINS)
 list-hidden-tests:
 	@$(foreach n,$(HIDDEN_NUMBERS),echo "asof$(ASOF)/hidden-ch$(n)=$(DIR)/hidden/ch$(n)";)
 
-$(DIR)/obj/hidden/%.o: $(HIDDEN)/%.cpp
-	@mkdir -p $(@D)
-	$(CXX) $(CXXFLAGS) -I$(SRC) -Itests -MMD -MP -c $< -o $@
+$(DIR)/obj/hidden/%.o: $(HIDDEN)/%.cpp | compile-links hidden-link
+	$(call compile,hidden/$*.cpp,-Itests)
+
+# The compile directory's link to the hidden tests (see compile in asof.mk):
+# made again on each run, as HIDDEN may name another directory each time.
+.PHONY: hidden-link
+hidden-link: compile-links
+	@ln -sfn $(abspath $(HIDDEN)) $(CC_DIR)/hidden
 
 define hidden_binary
 $(DIR)/hidden/ch$(1): $(patsubst $(HIDDEN)/%.cpp,$(DIR)/obj/hidden/%.o,$(wildcard \

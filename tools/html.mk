@@ -15,5 +15,5 @@ html: $(HTML_OUT)/index.html
 $(HTML_OUT)/index.html: book.md $(wildcard references.bib) $(CHAPTERS) tools/html_site.py \
                         tools/html.lua tools/fragments.lua tools/exercises.lua \
                         tools/tikz-preamble.tex $(wildcard tools/web/*) \
-                        $(wildcard figures/*) | lint
+                        $(wildcard figures/*) | $(LINTED)
 	python3 tools/html_site.py --out $(HTML_OUT) --cache $(HTML_CACHE) book.md $(CHAPTERS)

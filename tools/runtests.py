@@ -3,12 +3,15 @@
 
     tools/runtests.py [--python-tests DIR_OR_FILE] [LABEL=BINARY ...]
 
-Each binary runs as its own process with a time limit and writes a JSON report;
-a test counts as passed only when that report says so, so a binary that dies
-midway loses its remaining tests instead of passing them. The last line,
-"tests: N passed, M failed", is the one CI reads.
+Each binary runs with a time limit and writes a JSON report; a test counts as
+passed only when that report says so, so a binary that dies midway loses its
+remaining tests instead of passing them. A binary's tests are split into
+GoogleTest shards (GTEST_TOTAL_SHARDS), and --jobs shards of all the binaries
+run at a time: the tests are independent processes' work, so they use every
+core. The last line, "tests: N passed, M failed", is the one CI reads.
 """
 import argparse
+import concurrent.futures
 import json
 import os
 import subprocess
@@ -19,13 +22,14 @@ import unittest
 TIME_LIMIT = 900  # seconds for one test binary; a hang must not stall CI
 
 
-def run_gtest(label, binary):
-    """Returns (passed, failed names) for one GoogleTest binary."""
+def run_shard(binary, index, total):
+    """Runs one shard of a GoogleTest binary: (output, exit status, report)."""
+    env = dict(os.environ, GTEST_TOTAL_SHARDS=str(total), GTEST_SHARD_INDEX=str(index))
     with tempfile.TemporaryDirectory() as tmp:
         report = os.path.join(tmp, 'report.json')
         try:
             proc = subprocess.run([binary, '--gtest_brief=1', '--gtest_output=json:' + report],
-                                  capture_output=True, text=True, timeout=TIME_LIMIT)
+                                  capture_output=True, text=True, timeout=TIME_LIMIT, env=env)
             output, code = proc.stdout + proc.stderr, proc.returncode
         except subprocess.TimeoutExpired as e:
             output, code = (e.stdout or b'').decode(errors='replace'), 'timeout'
@@ -33,25 +37,45 @@ def run_gtest(label, binary):
             with open(report) as f:
                 suites = json.load(f)['testsuites']
         except (OSError, ValueError, KeyError):
+            suites = None
+    return output, code, suites
+
+
+def summarize(label, binary, shards):
+    """Returns (passed, failed names) for one binary from its shards' results."""
+    passed, failed = 0, []
+    for output, code, suites in shards:
+        if suites is None:
             print(output)
             print('%s: %s ended (%s) without a report: counted as one failure'
                   % (label, binary, code))
-            return 0, [label + ' (no report)']
-    passed, failed = 0, []
-    for suite in suites:
-        for test in suite['testsuite']:
-            if test.get('result') == 'SKIPPED' or test.get('status') == 'NOTRUN':
-                continue
-            if test.get('failures'):
-                failed.append('%s %s.%s' % (label, suite['name'], test['name']))
-            else:
-                passed += 1
-    if failed or code != 0:
-        print(output)
-        if not failed:  # exited non-zero after all tests passed (a leak report, say)
-            failed.append('%s (exit status %s)' % (label, code))
+            failed.append(label + ' (no report)')
+            continue
+        shard_failed = []
+        for suite in suites:
+            for test in suite['testsuite']:
+                if test.get('result') == 'SKIPPED' or test.get('status') == 'NOTRUN':
+                    continue
+                if test.get('failures'):
+                    shard_failed.append('%s %s.%s' % (label, suite['name'], test['name']))
+                else:
+                    passed += 1
+        if shard_failed or code != 0:
+            print(output)
+            if not shard_failed:  # exited non-zero after all tests passed (a leak report, say)
+                shard_failed.append('%s (exit status %s)' % (label, code))
+        failed += shard_failed
     print('%-28s %5d passed, %d failed' % (label, passed, len(failed)))
     return passed, failed
+
+
+def run_gtests(binaries, jobs):
+    """Runs every binary in `jobs` shards, `jobs` shards at a time."""
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        futures = [[pool.submit(run_shard, binary, index, jobs) for index in range(jobs)]
+                   for _, binary in binaries]
+        return [summarize(label, binary, [f.result() for f in shards])
+                for (label, binary), shards in zip(binaries, futures)]
 
 
 def run_python(path):
@@ -72,15 +96,15 @@ def run_python(path):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument('--python-tests')
+    parser.add_argument('--jobs', type=int, default=os.cpu_count() or 1)
     parser.add_argument('binaries', nargs='*', metavar='LABEL=BINARY')
     args = parser.parse_args()
     passed, failed = 0, []
     if args.python_tests:
         p, f = run_python(args.python_tests)
         passed, failed = passed + p, failed + f
-    for item in args.binaries:
-        label, binary = item.split('=', 1)
-        p, f = run_gtest(label, binary)
+    binaries = [item.split('=', 1) for item in args.binaries]
+    for p, f in run_gtests(binaries, max(1, args.jobs)):
         passed, failed = passed + p, failed + f
     for name in failed:
         print('FAILED:', name)

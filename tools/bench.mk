@@ -20,9 +20,20 @@ BENCH_CXXFLAGS := -std=c++17 -O2 -g -ffp-contract=off -Wall -Wextra -Werror \
                   $(if $(filter double,$(FLOAT)),-DLRT_FLOAT_AS_DOUBLE)
 BENCH_ARGS ?=
 
+# The chapter that writes the benchmark, if CHAPTERS holds it (a kit of
+# earlier chapters does not).
+BENCH_CHAPTER := $(shell grep -l '^<<bench/bvhbench.cpp>>=' $(CHAPTERS) /dev/null)
+
 .PHONY: bench bench-build
 # make (the build command) compiles the benchmark too, so that it cannot rot
-# between measurements; only make bench runs it.
+# between measurements; only make bench runs it. Without the benchmark's
+# chapter there is nothing to compile, and make bench says so.
+ifeq ($(BENCH_CHAPTER),)
+bench-build:
+	@echo "bench: no chapter of this book writes bench/bvhbench.cpp: nothing to build"
+bench: bench-build
+	@echo "make bench: the benchmark is chapter 6's; this book ends before it" >&2; exit 1
+else
 bench-build: lint
 	$(ASOF) ASOF=$(LAST) tangle
 	$(ASOF) ASOF=$(LAST) -j$(JOBS) lib
@@ -38,3 +49,4 @@ bench: bench-build
 	then python3 $(BENCH_GENERATOR) --out $(BENCH_DATA); fi
 	$(BENCH_BIN) --data $(BENCH_DATA) --json $(BUILD)/bvhbench.json \
 	    $(BENCH_ARGS)
+endif

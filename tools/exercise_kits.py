@@ -49,6 +49,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
+import course  # noqa: E402
 import exercises  # noqa: E402
 
 EDITIONS = ('solution', 'student')
@@ -136,22 +137,80 @@ def copy_file(source, target):
         shutil.copy2(source, target)
 
 
-def exercise_table(chosen):
+class Choice:
+    """What a pair of kits is for: the chapters given by number (every
+    exercise of them), or one assignment of a course plan (docs/course.md).
+
+    numbers: the chapters whose exercises are chosen (the kit holds chapters
+    1 to the last of them); chosen: those exercises (Exercise objects);
+    points: {id: points}, the plan's where it says; stubbed: the exercises
+    that are stubs in the student kit: the chosen ones, and with a plan also
+    those of the assignments released later (earlier chapters' included), so
+    that no solution is handed out before its assignment."""
+
+    def __init__(self, book, chapters=None, plan=None, assignment=None):
+        self.plan, self.assignment = plan, None
+        if plan is None:
+            if assignment:
+                fail('ASSIGNMENT needs PLAN (a course plan, docs/course.md)')
+            self.numbers = selection(book, chapters)
+            self.chosen = [e for e in book.exercises if e.chapter in self.numbers]
+            self.points = {e.id: e.points for e in self.chosen}
+            self.stubbed = {e.id for e in self.chosen}
+            return
+        if chapters:
+            fail('give CHAPTERS or PLAN, not both')
+        if not assignment:
+            fail('PLAN needs ASSIGNMENT: the kits are those of one assignment')
+        try:
+            loaded = course.load(plan, {e.id: e.points for e in book.exercises})
+            self.assignment = loaded.assignment(assignment)
+        except course.PlanError as e:
+            fail(str(e))
+        ids = self.assignment.exercises
+        self.chosen = [e for e in book.exercises if e.id in ids]
+        self.numbers = sorted({e.chapter for e in self.chosen})
+        self.points = dict(self.assignment.points)
+        self.stubbed = set(ids) | set(loaded.unreleased(assignment))
+
+    def manifest(self):
+        if self.assignment is None:
+            return {}
+        a = self.assignment.as_dict()
+        a['plan'] = os.path.basename(self.plan)
+        return {'assignment': a, 'unreleased': sorted(self.stubbed - set(self.points))}
+
+
+def exercise_table(chosen, points):
     if not chosen:
         return 'This set has no exercises.'
     rows = ['| exercise | points | title | chapter file | section | tests |',
             '|---|---|---|---|---|---|']
     for e in chosen:
         section = e.section.label() if e.section.number else e.section.title
-        rows.append('| %s | %d | %s | `%s` | %s | `%s*` |' % (
-            e.number, e.points, e.title, e.path, section, e.suite_prefix))
+        rows.append('| %s | %g | %s | `%s` | %s | `%s*` |' % (
+            e.number, points[e.id], e.title, e.path, section, e.suite_prefix))
     rows.append('')
-    rows.append('%d exercises, %d points in all.' % (len(chosen),
-                                                     sum(e.points for e in chosen)))
+    rows.append('%d exercises, %g points in all.' % (len(chosen),
+                                                     sum(points[e.id] for e in chosen)))
     return '\n'.join(rows)
 
 
-def readme(edition, book, kit_chapters, chosen_numbers, chosen):
+def later_note(book, choice):
+    """For the kit of an assignment of a plan: the stubs of exercises that
+    later assignments set, which are not this one's to write."""
+    last = max(choice.numbers)
+    later = [e for e in book.exercises if e.id in choice.stubbed and
+             e.id not in choice.points and e.chapter <= last]
+    if not later:
+        return ''
+    return ('\n\nThe exercises %s are stubs too: a later assignment sets them. Their '
+            'tests fail, and so may tests of later chapters that use their code; '
+            'leave them for now.' % ', '.join(e.id for e in later))
+
+
+def readme(edition, book, kit_chapters, choice):
+    chosen_numbers, chosen = choice.numbers, choice.chosen
     with open(os.path.join(HERE, 'kit', 'README.%s.md' % edition), encoding='utf-8') as f:
         text = f.read()
     example = chosen[0] if chosen else None
@@ -162,7 +221,8 @@ def readme(edition, book, kit_chapters, chosen_numbers, chosen):
                               if not chosen or any(e.chapter == n for e in chosen)),
         'SELECTED_FILES': ', '.join('`%s`' % c.path for c in kit_chapters
                                     if c.number in chosen_numbers),
-        'EXERCISES': exercise_table(chosen),
+        'EXERCISES': exercise_table(chosen, choice.points),
+        'LATER': later_note(book, choice),
         'EXAMPLE_ID': example.id if example else 'ex-N.K',
         'EXAMPLE_CH': example.chapter if example else 'NN',
         'EXAMPLE_N': str(int(example.chapter)) if example else 'N',
@@ -175,14 +235,14 @@ def readme(edition, book, kit_chapters, chosen_numbers, chosen):
     return text
 
 
-def write_kit(edition, src, out, book, chosen_numbers, build_book):
+def write_kit(edition, src, out, book, choice, build_book):
     kit = os.path.join(out, edition)
     if os.path.exists(kit):
         shutil.rmtree(kit)
     os.makedirs(kit)
+    chosen_numbers, chosen = choice.numbers, choice.chosen
     last = max(chosen_numbers)
     kit_chapters = [c for c in book.chapters if c.number <= last]
-    chosen = [e for e in book.exercises if e.chapter in chosen_numbers]
 
     copy_file(os.path.join(ROOT, 'Makefile'), os.path.join(kit, 'Makefile'))
     copy_tree(os.path.join(ROOT, 'tools'), os.path.join(kit, 'tools'))
@@ -197,8 +257,9 @@ def write_kit(edition, src, out, book, chosen_numbers, build_book):
     for chapter in kit_chapters:
         target = os.path.join(kit, chapter.path)
         os.makedirs(os.path.dirname(target), exist_ok=True)
-        if edition == 'student' and chapter.number in chosen_numbers:
-            lines = exercises.student_edition(chapter)
+        stubbed = [e for e in chapter.exercises if e.id in choice.stubbed]
+        if edition == 'student' and stubbed:
+            lines = exercises.student_edition(chapter, only=stubbed)
         else:
             lines = chapter.lines
         with open(target, 'w', encoding='utf-8') as f:
@@ -209,14 +270,18 @@ def write_kit(edition, src, out, book, chosen_numbers, build_book):
             copy_tree(os.path.join(src, 'tests', 'hidden', 'ch' + chapter.number),
                       os.path.join(kit, 'tests', 'hidden', 'ch' + chapter.number))
     with open(os.path.join(kit, 'README.md'), 'w', encoding='utf-8') as f:
-        f.write(readme(edition, book, kit_chapters, chosen_numbers, chosen))
+        f.write(readme(edition, book, kit_chapters, choice))
+    listed = [e.as_dict(hidden=edition == 'solution') for e in chosen]
+    for e in listed:
+        e['points'] = choice.points[e['id']]
     manifest = {
         'edition': edition,
         'chapters': [c.path for c in kit_chapters],
         'chosen_chapters': chosen_numbers,
-        'exercises': [e.as_dict(hidden=edition == 'solution') for e in chosen],
-        'points': sum(e.points for e in chosen),
+        'exercises': listed,
+        'points': sum(choice.points.values()),
     }
+    manifest.update(choice.manifest())
     with open(os.path.join(kit, 'exercises.json'), 'w', encoding='utf-8') as f:
         json.dump(manifest, f, indent=2)
         f.write('\n')
@@ -249,19 +314,26 @@ def tarball(out, edition):
 def build(args):
     src = os.path.abspath(args.src)
     book = source_book(src)
-    chosen_numbers = selection(book, args.chapters)
+    choice = Choice(book, args.chapters, args.plan and os.path.abspath(args.plan),
+                    args.assignment)
+    chosen_numbers = choice.numbers
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
     for edition in EDITIONS:
         started = time.time()
-        kit, chosen = write_kit(edition, src, out, book, chosen_numbers, not args.no_book)
+        kit, chosen = write_kit(edition, src, out, book, choice, not args.no_book)
         path = tarball(out, edition)
         print('exercises: %s kit in %s, %s (%.0f s)' % (edition, shown(kit), shown(path),
                                                          time.time() - started))
+    if choice.assignment:
+        print('  assignment %s of %s' % (choice.assignment.name, shown(choice.plan)))
     for e in chosen:
-        print('  %-8s %2d points  %s' % (e.id, e.points, e.title))
-    print('  %d exercises, %d points, chapters %s' % (
-        len(chosen), sum(e.points for e in chosen), ' '.join(chosen_numbers)))
+        print('  %-8s %2g points  %s' % (e.id, choice.points[e.id], e.title))
+    print('  %d exercises, %g points, chapters %s' % (
+        len(chosen), sum(choice.points.values()), ' '.join(chosen_numbers)))
+    later = sorted(choice.stubbed - set(choice.points))
+    if later:
+        print('  stubs also for the exercises of later assignments: %s' % ' '.join(later))
     problems = leaks(out, src)
     if problems:
         for problem in problems:
@@ -338,7 +410,8 @@ def leak_targets(src, manifest):
     that appear nowhere else in the source, and for every pair of consecutive
     solution lines; and the hidden test names."""
     book = source_book(src)
-    chosen = {e['id'] for e in manifest['exercises']}
+    # The chosen exercises, and with a plan those of later assignments.
+    chosen = {e['id'] for e in manifest['exercises']} | set(manifest.get('unreleased', []))
     kit_paths = set(manifest['chapters'])
     allowed = []
     solution = []    # (compact text, exercise, chapter path, line, text)
@@ -616,6 +689,8 @@ def validate_student(out, manifest, jobs):
     solution = os.path.join(out, 'solution')
     chapters = manifest['chapters']
     chosen = {e['id']: e for e in manifest['exercises']}
+    # A plan's later assignments: stubs too, whose tests must fail as well.
+    stubbed = dict(chosen, **{e: None for e in manifest.get('unreleased', [])})
     runs, errors = [], []
     hidden = os.path.join(solution, 'tests', 'hidden')
     # While the student's chapters are the solution's, so is the code: the
@@ -643,7 +718,7 @@ def validate_student(out, manifest, jobs):
             runs += r
             errors += ['student: ' + x for x in e]
         same_so_far = same_so_far and same
-    exercise_runs = judge('student', runs, chosen, errors)
+    exercise_runs = judge('student', runs, stubbed, errors)
     if not errors:
         check_expected('student', runs, manifest['exercises'], errors)
     return runs, errors, ', %d of them exercise tests that must fail' % exercise_runs
@@ -751,6 +826,8 @@ def main(argv=None):
     p.add_argument('--out', required=True)
     p.add_argument('--src', default=ROOT)
     p.add_argument('--no-book', action='store_true')
+    p.add_argument('--plan', help='a course plan (docs/course.md)')
+    p.add_argument('--assignment', help='with --plan: the kits of this assignment')
     p.add_argument('chapters', nargs='*')
     p = sub.add_parser('leaks')
     p.add_argument('--out', required=True)

@@ -2,6 +2,9 @@
 # markup and the kits are described in docs/exercises.md. Included by the
 # Makefile, so these run from the repository root:
 #
+#   make exercises PLAN=course.toml ASSIGNMENT=a1  the kits of one assignment of a
+#                       course plan (docs/course.md): its exercises with the
+#                       plan's points; later assignments' exercises stay stubs
 #   make exercises [CHAPTERS="03 05"]   build/exercises/student/ and solution/,
 #                       with lrt-student.tar.gz and lrt-solution.tar.gz, for the
 #                       exercises of the chapters given by number (default: all);
@@ -21,7 +24,9 @@ EXERCISE_CHAPTERS := $(filter-out %.md,$(CHAPTERS))
 EXERCISES_OUT := $(BUILD)/exercises
 
 exercises: | deps
-	python3 tools/exercise_kits.py build --out $(EXERCISES_OUT) $(EXERCISE_CHAPTERS)
+	python3 tools/exercise_kits.py build --out $(EXERCISES_OUT) \
+	    $(if $(PLAN),--plan $(PLAN))$(if $(ASSIGNMENT), --assignment $(ASSIGNMENT)) \
+	    $(EXERCISE_CHAPTERS)
 
 validate-exercises: exercises
 	python3 tools/exercise_kits.py validate --out $(EXERCISES_OUT)

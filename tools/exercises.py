@@ -660,10 +660,12 @@ def stub_code(region):
 
 def student_edition(chapter, only=None):
     """The chapter's lines with every solution (or, with `only`, those of one
-    exercise) replaced by its stub. The markers stay, so the student sees
-    where to write; stub blocks go."""
+    exercise, or of a set of exercises) replaced by its stub. The markers
+    stay, so the student sees where to write; stub blocks go."""
     out = list(chapter.lines)
-    regions = [r for r in chapter.regions if only is None or r.exercise is only]
+    if only is not None and not isinstance(only, (set, frozenset, list, tuple)):
+        only = [only]
+    regions = [r for r in chapter.regions if only is None or r.exercise in only]
     for region in sorted(regions, key=lambda r: r.begin + r.chunk.line, reverse=True):
         if region.stub_begin is not None:
             del out[region.line(region.stub_begin) - 1:region.line(region.stub_end)]

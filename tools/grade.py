@@ -1011,7 +1011,9 @@ def grade_batch(args):
     # on the same set (and a wrong --chapters stops the batch before it starts).
     _, book = load_book(args.root)
     selected = graded_exercises(book, args, args.root)   # a bad plan stops the batch here
-    chapters = [] if args.plan else graded_chapters(book, args.chapters, args.root)
+    # Children given no choice make the same default one (the kit's
+    # exercises.json, or every chapter).
+    chapters = graded_chapters(book, args.chapters, args.root) if args.chapters else []
     # One secret for the whole batch: every student's code answers the same
     # cases.
     forwarded = ['--root', args.root, '--cache', args.cache, '--time-limit',
@@ -1023,7 +1025,7 @@ def grade_batch(args):
                  '--cxxflags', args.cxxflags, '--build-jobs', '1']
     if args.allow_no_sandbox:
         forwarded.append('--allow-no-sandbox')
-    if chapters:    # none: the kit chose no chapter with exercises; so will each child
+    if chapters:
         forwarded += ['--chapters', ' '.join(chapters)]
     if args.plan:
         forwarded += ['--plan', os.path.abspath(args.plan), '--assignment', args.assignment]

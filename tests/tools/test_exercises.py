@@ -536,6 +536,78 @@ class KitTest(unittest.TestCase):
         self.assertIn('no chapter 07', result.stderr)
 
 
+class PlanKitTest(unittest.TestCase):
+    """The kits of one assignment of a course plan (docs/course.md), of the
+    fixture book: ex-2.1 now, worth 10; ex-1.2 in the next assignment, so a
+    stub in this kit although its chapter comes first; ex-1.1 in no
+    assignment, so solved."""
+
+    PLAN = ('title = "fixture course"\n\n'
+            '[[assignment]]\nname = "first"\nexercises = ["ex-2.1"]\n'
+            'points = { "ex-2.1" = 10 }\n\n'
+            '[[assignment]]\nname = "second"\nexercises = ["ex-1.2"]\n')
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp()
+        cls.plan = os.path.join(cls.tmp, 'course.toml')
+        write(cls.plan, cls.PLAN)
+        cls.out = os.path.join(cls.tmp, 'first')
+        cls.result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build',
+                          '--src', FIXTURE, '--out', cls.out, '--no-book',
+                          '--plan', cls.plan, '--assignment', 'first'])
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp)
+
+    def setUp(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stdout + self.result.stderr)
+
+    def test_later_assignments_stay_stubs(self):
+        student = os.path.join(self.out, 'student')
+        ch1, ch2 = read(os.path.join(student, CH1)), read(os.path.join(student, CH2))
+        self.assertIn('Exercise ex-2.1 is not done yet', ch2)
+        self.assertIn('Exercise ex-1.2 is not done yet', ch1)
+        self.assertNotIn('Exercise ex-1.1 is not done yet', ch1)
+        self.assertIn(read(os.path.join(FIXTURE, CH1)).split('<<Add up the squares of v>>=')[1]
+                      .split('@\n')[0], ch1)
+        for name in (CH1, CH2):
+            self.assertEqual(read(os.path.join(self.out, 'solution', name)),
+                             read(os.path.join(FIXTURE, name)))
+        self.assertIn('ex-1.2 are stubs too', read(os.path.join(student, 'README.md')))
+        self.assertEqual(exercise_kits.leaks(self.out, FIXTURE), [])
+
+    def test_manifest_has_the_plans_points(self):
+        manifest = json.loads(read(os.path.join(self.out, 'student', 'exercises.json')))
+        self.assertEqual([(e['id'], e['points']) for e in manifest['exercises']],
+                         [('ex-2.1', 10)])
+        self.assertEqual(manifest['points'], 10)
+        self.assertEqual(manifest['unreleased'], ['ex-1.2'])
+        self.assertEqual(manifest['assignment']['name'], 'first')
+        readme = read(os.path.join(self.out, 'student', 'README.md'))
+        self.assertIn('| 2.1 | 10 | The mean |', readme)
+
+    def test_planted_solution_of_a_later_assignment_is_found(self):
+        out = os.path.join(self.tmp, 'planted')
+        shutil.copytree(os.path.join(self.out, 'student'), os.path.join(out, 'student'))
+        solution = read(os.path.join(FIXTURE, CH1)).split('<<Clamp v to the range>>=')[1]
+        solution = solution.split('// BEGIN SOLUTION\n')[1].split('// END SOLUTION')[0]
+        path = os.path.join(out, 'student', 'tests', 'ch01', 'test_sums.cpp')
+        write(path, read(path) + '/*\n' + solution + '*/\n')
+        self.assertTrue([p for p in exercise_kits.leaks(out, FIXTURE) if 'ex-1.2' in p])
+
+    def test_bad_plan_stops_the_build_with_file_and_line(self):
+        bad = os.path.join(self.tmp, 'bad.toml')
+        write(bad, self.PLAN.replace('"ex-1.2"]', '"ex-1.3"]'))
+        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build',
+                      '--src', FIXTURE, '--out', os.path.join(self.tmp, 'bad'), '--no-book',
+                      '--plan', bad, '--assignment', 'first'])
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn(bad + ':10: assignment \'second\': ex-1.3 is not an exercise',
+                      result.stderr)
+
+
 class ValidationTest(unittest.TestCase):
     def test_a_stub_that_passes_its_tests_is_caught(self):
         # Exercise 1.2's stub block holds the solution, so its tests pass in the

@@ -145,15 +145,25 @@ struct FastRay {
         o[1] = oy;
         o[2] = oz;
         // Compute the ray's permutation and shear for triangle tests
-        kz = MaxDimension(Abs(ray.d));
-        kx = kz + 1;
-        if (kx == 3) kx = 0;
-        ky = kx + 1;
-        if (ky == 3) ky = 0;
-        Vector3f d = Permute(ray.d, kx, ky, kz);
-        Sx = -d.x / d.z;
-        Sy = -d.y / d.z;
-        Sz = 1 / d.z;
+        {
+            // Choose the ray's permuted axes kx, ky, kz and direction d
+            int kz = MaxDimension(Abs(ray.d));
+            int kx = kz + 1;
+            if (kx == 3) kx = 0;
+            int ky = kx + 1;
+            if (ky == 3) ky = 0;
+            Vector3f d = Permute(ray.d, kx, ky, kz);
+            // Compute the ray's shear coefficients Sx, Sy, Sz
+            Float Sx = -d.x / d.z;
+            Float Sy = -d.y / d.z;
+            Float Sz = 1 / d.z;
+            this->kx = kx;
+            this->ky = ky;
+            this->kz = kz;
+            this->Sx = Sx;
+            this->Sy = Sy;
+            this->Sz = Sz;
+        }
     }
     Float ox, oy, oz, ix, iy, iz;
     int octant;
@@ -359,6 +369,7 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
                 tri.c[kz][2] - fr.o[kz]);
     // Shear the vertices with the ray's coefficients
     const Float Sx = fr.Sx, Sy = fr.Sy, Sz = fr.Sz;
+    // Shear the translated vertices into x0, y0, x1, y1, x2, y2
     Float x0 = p0t.x + Sx * p0t.z, y0 = p0t.y + Sy * p0t.z;
     Float x1 = p1t.x + Sx * p1t.z, y1 = p1t.y + Sy * p1t.z;
     Float x2 = p2t.x + Sx * p2t.z, y2 = p2t.y + Sy * p2t.z;

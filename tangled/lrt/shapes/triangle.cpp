@@ -94,6 +94,7 @@ bool Triangle::IntersectP(const Ray &ray, bool) const {
     Point3f p1t = p1 - Vector3f(ray.o);
     Point3f p2t = p2 - Vector3f(ray.o);
     // Permute components of triangle vertices and ray direction
+    // Choose the ray's permuted axes kx, ky, kz and direction d
     int kz = MaxDimension(Abs(ray.d));
     int kx = kz + 1;
     if (kx == 3) kx = 0;
@@ -104,9 +105,11 @@ bool Triangle::IntersectP(const Ray &ray, bool) const {
     p1t = Permute(p1t, kx, ky, kz);
     p2t = Permute(p2t, kx, ky, kz);
     // Apply shear transformation to translated vertex positions
+    // Compute the ray's shear coefficients Sx, Sy, Sz
     Float Sx = -d.x / d.z;
     Float Sy = -d.y / d.z;
     Float Sz = 1 / d.z;
+    // Shear the translated vertices into x0, y0, x1, y1, x2, y2
     Float x0 = p0t.x + Sx * p0t.z, y0 = p0t.y + Sy * p0t.z;
     Float x1 = p1t.x + Sx * p1t.z, y1 = p1t.y + Sy * p1t.z;
     Float x2 = p2t.x + Sx * p2t.z, y2 = p2t.y + Sy * p2t.z;
@@ -172,6 +175,7 @@ bool Triangle::Intersect(const Ray &ray, Float *tHit,
     Point3f p1t = p1 - Vector3f(ray.o);
     Point3f p2t = p2 - Vector3f(ray.o);
     // Permute components of triangle vertices and ray direction
+    // Choose the ray's permuted axes kx, ky, kz and direction d
     int kz = MaxDimension(Abs(ray.d));
     int kx = kz + 1;
     if (kx == 3) kx = 0;
@@ -182,9 +186,11 @@ bool Triangle::Intersect(const Ray &ray, Float *tHit,
     p1t = Permute(p1t, kx, ky, kz);
     p2t = Permute(p2t, kx, ky, kz);
     // Apply shear transformation to translated vertex positions
+    // Compute the ray's shear coefficients Sx, Sy, Sz
     Float Sx = -d.x / d.z;
     Float Sy = -d.y / d.z;
     Float Sz = 1 / d.z;
+    // Shear the translated vertices into x0, y0, x1, y1, x2, y2
     Float x0 = p0t.x + Sx * p0t.z, y0 = p0t.y + Sy * p0t.z;
     Float x1 = p1t.x + Sx * p1t.z, y1 = p1t.y + Sy * p1t.z;
     Float x2 = p2t.x + Sx * p2t.z, y2 = p2t.y + Sy * p2t.z;

@@ -30,7 +30,13 @@ import datetime
 import os
 import re
 import sys
-import tomllib
+try:
+    import tomllib                    # Python 3.11 (Debian 12)
+except ImportError:                   # older Pythons, e.g. Ubuntu 22.04's 3.10
+    try:
+        import tomli as tomllib       # the same parser (python3-tomli)
+    except ImportError:
+        tomllib = None
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -122,6 +128,9 @@ def load(path, book_exercises):
             raw = f.read()
     except OSError as e:
         raise PlanError('%s: cannot read the course plan (%s)' % (shown, e.strerror))
+    if tomllib is None:
+        raise PlanError('%s: reading a course plan needs Python 3.11 (tomllib) or the '
+                        'python3-tomli package' % shown)
     try:
         text = raw.decode('utf-8')
         data = tomllib.loads(text)
@@ -225,18 +234,22 @@ def load(path, book_exercises):
     return Plan(shown, title, assignments)
 
 
-def load_for_book(path, root):
-    """A plan checked against the book in root."""
+def book_in(root):
+    """The exercises of the book in root (exercises.Book, tests not read)."""
     import exercises
     chapters = sorted(os.path.join('chapters', f) for f in os.listdir(
         os.path.join(root, 'chapters')) if re.match(r'^\d\d-.*\.md$', f))
     cwd = os.getcwd()
     os.chdir(root)
     try:
-        book = exercises.load(chapters, root=root, tests=False)
+        return exercises.load(chapters, root=root, tests=False)
     finally:
         os.chdir(cwd)
-    return load(path, {e.id: e.points for e in book.exercises})
+
+
+def load_for_book(path, root):
+    """A plan checked against the book in root."""
+    return load(path, {e.id: e.points for e in book_in(root).exercises})
 
 
 def main(argv=None):

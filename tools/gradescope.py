@@ -29,7 +29,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import course  # noqa: E402
-import exercises  # noqa: E402
 
 TOOLS = ['grade.py', 'grade_build.py', 'sandbox.py', 'exercises.py', 'exercise_filter.py',
          'fragment_comments.py', 'tangle.py', 'course.py', 'deps.sh']
@@ -43,15 +42,7 @@ def fail(message):
 
 def graded(root, chapters, plan, assignment):
     """(chapter numbers graded, flags naming what is graded)."""
-    paths = sorted(os.path.join('chapters', f) for f in os.listdir(os.path.join(root,
-                                                                                'chapters'))
-                   if re.match(r'^\d\d-.*\.md$', f))
-    cwd = os.getcwd()
-    os.chdir(root)
-    try:
-        book = exercises.load(paths, root=root, tests=False)
-    finally:
-        os.chdir(cwd)
+    book = course.book_in(root)
     with_exercises = [c.number for c in book.chapters if c.exercises]
     if plan:
         if chapters:
@@ -139,8 +130,9 @@ def main(argv=None):
     if not numbers:
         fail('nothing to grade: no chapter has exercises')
     write(args.out, root, flags + args.grade_flags, plan)
+    shown = os.path.relpath(args.out)
     print('gradescope: %s grades chapter%s %s%s; upload it as the autograder' % (
-        os.path.relpath(args.out), 's' if len(numbers) > 1 else '', ' '.join(numbers),
+        args.out if shown.startswith('..') else shown, 's' if len(numbers) > 1 else '', ' '.join(numbers),
         ' (assignment %s of %s)' % (args.assignment, args.plan) if plan else ''))
 
 

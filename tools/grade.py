@@ -10,6 +10,10 @@ ignored and reported. Archives are read member by member: no member is ever
 written outside the grader's own directory, links and special files are
 ignored, and sizes are limited.
 
+With --plan FILE --assignment NAME (a course plan, docs/course.md) the
+assignment's exercises are graded, worth the plan's points. @FILE stands for
+the arguments in FILE, one per line (Gradescope's grade_flags).
+
 Which chapters are graded: those of --chapters ("05", "02 05"), else the
 chapters a kit was built for (the exercises.json of a kit that `make
 exercises CHAPTERS=...` made), else every chapter with exercises. Their

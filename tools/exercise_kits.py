@@ -57,10 +57,10 @@ EDITIONS = ('solution', 'student')
 VALIDATIONS = EDITIONS + ('grading',)
 # The toolchain's own tests go into every kit (the kit's `make test` runs
 # them) except the exercise machinery's, whose fixtures hold solutions, and
-# the grader's, which grade the repository's own solutions with its hidden
-# tests: in a student kit, whose chapters hold stubs, they could only fail.
+# the grader's and the autograder's, which grade the repository's own
+# solutions with its hidden tests: in a student kit, whose chapters hold stubs, they could only fail.
 TOOL_TESTS_LEFT_OUT = ('exercises', 'test_exercises.py', 'test_grade.py', 'attacks.py',
-                       '__pycache__')
+                       'test_gradescope.py', '__pycache__')
 # Make variables of the calling make that must not leak into a kit's make.
 MAKE_ENV_DROP = ('CHAPTERS', 'BUILD', 'MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'MAKEOVERRIDES',
                  'CH', 'UPTO', 'ONLY', 'ASOF', 'HIDDEN', 'GTEST_FILTER')

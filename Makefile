@@ -7,6 +7,7 @@
 #   make test UPTO=05  chapters 1..5's tests against the code as of chapter 5
 #                   (UPTO=last: every test against the whole library)
 #   make book       only the PDF
+#   make html       the web edition, build/html/ (tools/html.mk)
 #   make tangle     refresh tangled/, the readable tangle that is committed
 #   make lint       check the chapters' noweb/Markdown format
 #   make bench      chapter 6's BVH benchmark (tools/bench.mk): table + JSON
@@ -52,7 +53,9 @@ lib: lint
 # The code as of chapter N is the tangle of chapters 1..N; it must compile and
 # pass the tests of chapters 1..N, so no chapter leans on a later one. The
 # tools' own tests (tests/tools) run with the whole set, once: they do not
-# depend on FLOAT or SANITIZE.
+# depend on FLOAT or SANITIZE. The appendix (08) is a program, the benchmark,
+# whose tests run it from Python.
+PYTHON_TESTS_08 := tests/tools/test_bench.py
 test: lint
 	@bins=(); \
 	for n in $(PREFIXES); do \
@@ -60,8 +63,8 @@ test: lint
 	    $(ASOF) ASOF=$$n ONLY=$(CH) -j$(JOBS) tests; \
 	    bins+=($$($(ASOF) -s ASOF=$$n ONLY=$(CH) list-tests)); \
 	done; \
-	python3 tools/runtests.py $(if $(CH)$(FLOAT)$(SANITIZE),,--python-tests tests/tools) \
-	    "$${bins[@]}"
+	python3 tools/runtests.py $(if $(FLOAT)$(SANITIZE),,$(if $(CH),$(addprefix \
+	    --python-tests ,$(PYTHON_TESTS_$(CH))),--python-tests tests/tools)) "$${bins[@]}"
 
 compile_commands.json: tangle
 	python3 tools/compile_commands.py --src tangled > $@
@@ -70,6 +73,7 @@ book: $(BUILD)/book.pdf
 
 $(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/weave.sh tools/weave.lua \
                    tools/fragments.lua tools/exercises.lua tools/preamble.tex \
+                   tools/tikz-preamble.tex \
                    tools/highlight.theme tools/layout_check.py \
                    $(wildcard figures/*) | lint
 	tools/weave.sh $(BUILD)/book book.md $(CHAPTERS)
@@ -82,3 +86,4 @@ include tools/exercises.mk
 include tools/bench.mk
 include tools/figures.mk
 include tools/grade.mk
+include tools/html.mk

@@ -36,6 +36,12 @@ if [ "${1:-}" != grade ]; then
     # The book's citation style (book.md names the file).
     need citation-style-language-styles \
         test -f /usr/share/citation-style-language/styles/chicago-author-date.csl
+    # The web edition (make html) copies MathJax into the site; its tests drive
+    # Debian's chromium with chromedriver through python3-selenium.
+    need libjs-mathjax    test -f /usr/share/javascript/mathjax/MathJax.js
+    need chromium         test -x /usr/bin/chromium
+    need chromium-driver  test -x /usr/bin/chromedriver
+    need python3-selenium test -f /usr/lib/python3/dist-packages/selenium/__init__.py
 fi
 [ ${#missing[@]} -eq 0 ] && exit 0
 packages=$(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')

@@ -11,11 +11,12 @@ none is given). A kit holds chapters 1 to the last chosen one: the chosen
 chapters with stubs in place of solutions (student kit), the other chapters
 as they are; the public tests of those chapters; the Makefile, tools/ and
 tests/tools/ of this repository; book.md, figures/, data/; a README; the book
-as book.pdf and the readable tangle in tangled/ (both built in the kit);
-exercises.json. The solution kit adds tests/hidden/. The student kit must pass
+as book.pdf and as web pages in html/ (open html/index.html), and the readable
+tangle in tangled/ (all built in the kit); exercises.json. The solution kit adds tests/hidden/. The student kit must pass
 the leak check, which `build` runs last.
 
-leaks: searches the student kit (every file, the PDF's text, the tarball) for
+leaks: searches the student kit (every file, the text of the PDF and of the
+web pages, the tarball) for
 any line of a chosen exercise's solution that appears nowhere else in the
 source, any two consecutive lines of a solution, and the name of any hidden
 test.
@@ -36,6 +37,7 @@ the repository that holds this script.
 """
 import argparse
 import glob
+import html
 import json
 import os
 import re
@@ -58,9 +60,12 @@ VALIDATIONS = EDITIONS + ('grading',)
 # The toolchain's own tests go into every kit (the kit's `make test` runs
 # them) except the exercise machinery's, whose fixtures hold solutions, and
 # the grader's and the autograder's, which grade the repository's own
-# solutions with its hidden tests: in a student kit, whose chapters hold stubs, they could only fail.
+# solutions with its hidden tests: in a student kit, whose chapters hold
+# stubs, they could only fail. The web edition's are left out too: they open
+# pages of chapter 5, which a kit of the first chapters lacks, and a
+# student's machine may have no browser.
 TOOL_TESTS_LEFT_OUT = ('exercises', 'test_exercises.py', 'test_grade.py', 'attacks.py',
-                       'test_gradescope.py', '__pycache__')
+                       'test_gradescope.py', 'test_html.py', '__pycache__')
 # Make variables of the calling make that must not leak into a kit's make.
 MAKE_ENV_DROP = ('CHAPTERS', 'BUILD', 'MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'MAKEOVERRIDES',
                  'CH', 'UPTO', 'ONLY', 'ASOF', 'HIDDEN', 'GTEST_FILTER')
@@ -287,14 +292,17 @@ def write_kit(edition, src, out, book, choice, build_book):
         f.write('\n')
 
     # The kit is built with its own Makefile, as its README tells the reader
-    # to (`make`: the tangle, the library, the book), so a kit whose `make`
-    # fails is never handed out.
-    proc = make(kit, ['all'] if build_book else ['tangle'])
+    # to (`make`: the tangle, the library, the book; and the web edition), so
+    # a kit whose `make` fails is never handed out. The two kits share the
+    # web edition's compiled drawings.
+    proc = make(kit, ['all', 'html', 'HTML_CACHE=' + os.path.join(out, 'html-cache')]
+                if build_book else ['tangle'])
     if proc.returncode != 0:
         fail('%s kit: make failed in %s:\n%s%s' % (edition, kit, proc.stdout[-3000:],
                                                    proc.stderr[-3000:]))
     if build_book:
         shutil.copy2(os.path.join(kit, 'build', 'book.pdf'), os.path.join(kit, 'book.pdf'))
+        shutil.copytree(os.path.join(kit, 'build', 'html'), os.path.join(kit, 'html'))
     shutil.rmtree(os.path.join(kit, 'build'), ignore_errors=True)
     if os.path.exists(os.path.join(kit, 'compile_commands.json')):
         os.remove(os.path.join(kit, 'compile_commands.json'))
@@ -344,7 +352,7 @@ def build(args):
         fail('the student kit leaks solutions or hidden tests (%d findings)'
              % len(problems))
     print('exercises: leak check passed: no solution line or hidden test name in the '
-          'student kit, its tangle, its book or its tarball')
+          'student kit, its tangle, its book, its web pages or its tarball')
 
 
 # ---------------------------------------------------------------------------
@@ -398,7 +406,18 @@ def kit_files(out, edition):
 def decoded(name, data):
     if name.endswith('.pdf'):
         return pdf_text(data)
-    return data.decode('utf-8', errors='replace')
+    text = data.decode('utf-8', errors='replace')
+    if name.endswith('.html'):
+        return html_text(text)
+    return text
+
+
+def html_text(text):
+    """A web page's text as it reads: highlighted code is cut up by tags, so
+    a solution line is whole only without them (a tag gives way to the line
+    breaks inside it, so that line numbers stay those of the file)."""
+    text = re.sub(r'<[^>]*>', lambda m: '\n' * m.group(0).count('\n'), text)
+    return html.unescape(text)
 
 
 # Two consecutive solution lines found together elsewhere are a leak even if
@@ -828,7 +847,8 @@ def main(argv=None):
     p = sub.add_parser('build')
     p.add_argument('--out', required=True)
     p.add_argument('--src', default=ROOT)
-    p.add_argument('--no-book', action='store_true')
+    p.add_argument('--no-book', action='store_true',
+                   help='build neither book.pdf nor the web pages (html/)')
     p.add_argument('--plan', help='a course plan (docs/course.md)')
     p.add_argument('--assignment', help='with --plan: the kits of this assignment')
     p.add_argument('chapters', nargs='*')

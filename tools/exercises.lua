@@ -12,7 +12,8 @@ exercises.lua: the pandoc filter that typesets exercise divs (docs/exercises.md)
 
 becomes a set-off block: "Exercise 5.1  The slab test ... 4 points", the
 prose, "Hint: ...", and a line naming the section it practises, the fragments
-to write and the tests to run (Ex5_1_*). tools/weave.sh runs it before
+to write and the tests to run (Ex5_1_*). In LaTeX it is typeset here; for the
+web edition (tools/html.lua) it becomes a div.exercise with the same parts. tools/weave.sh runs it before
 tools/weave.lua, so cross-references in the hint and the chunks inside the div
 are handled there like any other. tools/exercises.py checks the attributes
 (make lint); this filter only shows them.
@@ -94,10 +95,30 @@ function Div(div)
   if not FORMAT:match('latex') then
     local heading = {pandoc.Strong({pandoc.Str('Exercise ' .. number)}), pandoc.Space()}
     append(heading, markdown_inlines(title))
-    append(heading, {pandoc.Space(), pandoc.Str('(' .. points_text .. ')')})
-    local blocks = {pandoc.Para(heading)}
+    append(heading, {pandoc.Space(), pandoc.Span({pandoc.Str(points_text)}, {class = 'points'})})
+    local blocks = {pandoc.Div({pandoc.Para(heading)}, {class = 'exercise-head'})}
     append(blocks, content)
     append(blocks, hint_blocks(div))
+    -- The section and the fragments are a cross-reference and examples of
+    -- fragments, which tools/html.lua turns into links with their numbers.
+    local notes = {}
+    local function add(label, inlines)
+      if #notes > 0 then append(notes, {pandoc.Space(), pandoc.Str('·'), pandoc.Space()}) end
+      append(notes, {pandoc.Strong({pandoc.Str(label)}), pandoc.Space()})
+      append(notes, inlines)
+    end
+    if section then
+      add('Practises:', {pandoc.Cite({pandoc.Str('@' .. section)},
+                                     {pandoc.Citation(section, 'NormalCitation')})})
+    end
+    local names = {}
+    for _, name in ipairs(fragments(div)) do
+      if #names > 0 then append(names, {pandoc.Str(','), pandoc.Space()}) end
+      names[#names + 1] = pandoc.Code(name, {class = 'fragment-use'})
+    end
+    if #names > 0 then add('Write:', names) end
+    add('Tests:', {pandoc.Code(suites)})
+    blocks[#blocks + 1] = pandoc.Div({pandoc.Para(notes)}, {class = 'exercise-notes'})
     return pandoc.Div(blocks, pandoc.Attr(id, {'exercise'}))
   end
 

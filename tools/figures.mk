@@ -1,5 +1,5 @@
 # make figures: the book's rendered figures. Chapter 7 tangles the figure
-# program, render/figures.cpp, like the benchmark of chapter 6 (roots outside
+# program, render/figures.cpp, like the benchmark of Appendix A (roots outside
 # lrt/ are not part of liblrt.a). The rule builds the library as of the last
 # chapter, always with Float as float (the precision the figures show, whatever
 # FLOAT says), compiles the program against it and runs it from the
@@ -15,7 +15,7 @@
 # give; CI runs it, so that the figures cannot drift from the code or data.
 #
 # make bench-levels: remeasures figures/data/bvhbench-levels.json (the bench of
-# chapter 6 on the bunny subdivided 0 to 4 times; a few minutes). It needs the
+# Appendix A on the bunny subdivided 0 to 4 times; a few minutes). It needs the
 # shared generator: BENCH_GENERATOR=/path/to/gen_bench_data.py if it is not at
 # ../shared/bench/.
 #

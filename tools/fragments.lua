@@ -13,8 +13,11 @@ numbers the chunks per chapter (2.7 is chapter 2's seventh), and records:
   book.uses_of       name -> the chunks whose code uses it
   book.identifiers   identifier -> the chunks whose `@ %def` defines it
   book.labels        label -> {kind = 'Section' | 'Figure' | ..., level, chapter}
+  book.missing       labels that cross-references name and the book lacks (see reference)
 
-with functions over them (neighbours, shown_lines, identifier_uses, ...).
+with functions over them (neighbours, shown_lines, identifier_uses, ...), and
+what both editions do alike: highlighting code with its fragment uses, finding
+numbered equations, figures, examples of fragments and cross-references.
 It checks its own reading of the chunks against noweb's markup: if the two
 disagree, the book would show code that is not the code that is compiled.
 ]]
@@ -112,16 +115,28 @@ Book.__index = Book
 -- chunks by chapter and collecting the labels that references may target.
 function M.read(doc, fail)
   local book = setmetatable({chunks = {}, by_name = {}, uses_of = {}, ids = {},
-                             identifiers = {}, labels = {}, fail = fail}, Book)
-  local chapter, count = 0, 0
+                             identifiers = {}, labels = {}, missing = {}, fail = fail},
+                            Book)
+  -- Chapters are numbered 1, 2, ...; appendices (level-1 headers of class
+  -- appendix, which must come last) A, B, ..., as LaTeX numbers them.
+  local chapter, count, appendices = 0, 0, 0
   doc:walk({
     Header = function(block)
-      if block.level == 1 and not block.classes:includes('unnumbered') then
+      local appendix = block.level == 1 and block.classes:includes('appendix')
+      if appendix then
+        appendices, count = appendices + 1, 0
+        chapter = string.char(string.byte('A') + appendices - 1)
+      elseif block.level == 1 and not block.classes:includes('unnumbered') then
+        if appendices > 0 then
+          fail('chapter "' .. pandoc.utils.stringify(block) ..
+               '" stands after an appendix')
+        end
         chapter, count = chapter + 1, 0
       end
       if block.identifier ~= '' then
         book.labels[block.identifier] = {
-          kind = block.level == 1 and 'Chapter' or 'Section',
+          kind = appendix and 'Appendix' or block.level == 1 and 'Chapter'
+                 or 'Section',
           level = block.level, chapter = chapter}
       end
     end,
@@ -244,22 +259,113 @@ function M.shown_lines(chunk)
   return out
 end
 
+-- Highlighted code in a pandoc output format ('latex', 'html5'), with each
+-- fragment use replaced by use(name, indent): the uses are set aside as
+-- placeholders, so that the highlighter sees plain C++, and put back into the
+-- highlighted text. Other lines are shown with noweb's escapes undone.
+function M.highlight(lines, format, use)
+  local placeholders, code = {}, {}
+  for i, line in ipairs(lines) do
+    local indent, used = line:match(M.USE_LINE)
+    if used then
+      placeholders[#placeholders + 1] = used
+      code[i] = indent .. 'LRTFRAGMENTUSE' .. #placeholders .. 'X'
+    else
+      code[i] = M.unescape_noweb(line)
+    end
+  end
+  local block = pandoc.CodeBlock(table.concat(code, '\n'), {class = 'cpp'})
+  local text = pandoc.write(pandoc.Pandoc({block}), format)
+  return (text:gsub('LRTFRAGMENTUSE(%d+)X', function(i)
+    return use(placeholders[tonumber(i)])
+  end))
+end
+
+-- A fragment shown as an example in the prose, `Name`{.fragment-use} and
+-- the like: the class, or nil for other inline code.
+local SAMPLE = {['fragment-header'] = true, ['fragment-use'] = true,
+                ['fragment-number'] = true}
+
+function M.sample_class(code)
+  for _, class in ipairs(code.classes) do
+    if SAMPLE[class] then return class end
+  end
+end
+
+-- A figure written in Markdown: an image alone in its paragraph, with a
+-- caption (pandoc gives it the title "fig:").
+function M.is_figure(block)
+  return block.t == 'Para' and #block.content == 1 and block.content[1].t == 'Image'
+         and block.content[1].title:match('^fig:') ~= nil
+end
+
+-- A numbered equation is written `$$ x $$ {#eq:id}`, which arrives as Math
+-- followed by Str "{#eq:id}". Returns the inlines with each such pair
+-- replaced by render(math, label).
+function M.number_equations(inlines, render)
+  local out, i = {}, 1
+  while i <= #inlines do
+    local el = inlines[i]
+    local label, j
+    if el.t == 'Math' and el.mathtype == 'DisplayMath' then
+      j = i + 1
+      while inlines[j] and (inlines[j].t == 'Space' or inlines[j].t == 'SoftBreak') do
+        j = j + 1
+      end
+      label = inlines[j] and inlines[j].t == 'Str' and
+              inlines[j].text:match('^{#(eq:[%w_:%-]+)}$')
+    end
+    if label then
+      out[#out + 1] = render(el, label)
+      i = j + 1
+    else
+      out[#out + 1] = el
+      i = i + 1
+    end
+  end
+  return out
+end
+
+-- The target of a cross-reference @sec:id, @fig:id, @eq:id or @tbl:id:
+-- (label, kind, the label's record). nil for other citations, which are
+-- citeproc's; a label that does not exist is added to book.missing.
+function Book:reference(cite)
+  if #cite.citations ~= 1 then return nil end
+  local id = cite.citations[1].id
+  local kind = id:match('^(%a+):')
+  if not (kind == 'sec' or kind == 'fig' or kind == 'eq' or kind == 'tbl') then
+    return nil
+  end
+  local target = self.labels[id]
+  if not target then
+    self.missing[#self.missing + 1] = id
+    return nil
+  end
+  return id, kind, target
+end
+
 -- Chunks whose code mentions an identifier as a whole word, other than where
 -- it is defined (operators and other non-words are listed without uses).
+-- (A whole word is a longest run of letters, digits and _: each chunk's set of
+-- them is made once, since the index asks about every identifier.)
 function Book:identifier_uses(id)
   if not id:match('^[%a_][%w_]*$') then return {} end
-  local result, skip = {}, {}
-  for _, chunk in ipairs(self.identifiers[id]) do skip[chunk] = true end
-  local pattern = '%f[%w_]' .. id .. '%f[^%w_]'
-  for _, chunk in ipairs(self.chunks) do
-    if not skip[chunk] then
+  if not self.words then
+    self.words = {}
+    for _, chunk in ipairs(self.chunks) do
+      local words = {}
       for _, line in ipairs(chunk.lines) do
-        if not line:match(M.USE_LINE) and line:find(pattern) then
-          result[#result + 1] = chunk
-          break
+        if not line:match(M.USE_LINE) then
+          for word in line:gmatch('[%w_]+') do words[word] = true end
         end
       end
+      self.words[chunk] = words
     end
+  end
+  local result, skip = {}, {}
+  for _, chunk in ipairs(self.identifiers[id]) do skip[chunk] = true end
+  for _, chunk in ipairs(self.chunks) do
+    if not skip[chunk] and self.words[chunk][id] then result[#result + 1] = chunk end
   end
   return result
 end

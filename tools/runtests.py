@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Run GoogleTest binaries and the tools' own tests; print one summary.
 
-    tools/runtests.py [--python-tests DIR] [LABEL=BINARY ...]
+    tools/runtests.py [--python-tests DIR_OR_FILE] [LABEL=BINARY ...]
 
 Each binary runs as its own process with a time limit and writes a JSON report;
 a test counts as passed only when that report says so, so a binary that dies
@@ -54,8 +54,14 @@ def run_gtest(label, binary):
     return passed, failed
 
 
-def run_python(directory):
-    suite = unittest.defaultTestLoader.discover(directory, top_level_dir=directory)
+def run_python(path):
+    """The tests of a directory, or of one file (a chapter's program, say)."""
+    if os.path.isfile(path):
+        directory, pattern = os.path.dirname(path), os.path.basename(path)
+    else:
+        directory, pattern = path, 'test*.py'
+    suite = unittest.defaultTestLoader.discover(directory, pattern=pattern,
+                                                top_level_dir=directory)
     result = unittest.TextTestRunner(verbosity=1, stream=sys.stdout).run(suite)
     failed = ['tools %s' % test.id() for test, _ in result.failures + result.errors]
     passed = result.testsRun - len(failed) - len(result.skipped)

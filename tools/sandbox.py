@@ -23,10 +23,13 @@ Isolation, the best this machine allows (isolation() says which):
 Limits (prlimit): address space, CPU seconds, file size, processes, open
 files, no core dumps.
 """
+import fcntl
 import functools
 import os
 import shutil
+import stat
 import subprocess
+import tempfile
 
 # The unprivileged user the sandbox runs as when the grader is root: a uid
 # that no account uses, so that RLIMIT_NPROC counts the sandbox alone.
@@ -43,11 +46,51 @@ def _is_root():
     return os.geteuid() == 0
 
 
+# The processes of one uid share one RLIMIT_NPROC count, in a sandbox or not:
+# two graders running at once (make grade-batch runs two) whose workers had
+# one uid would share it, and a fork bomb in one student's worker would stop
+# the other student's worker from starting. Each grader process therefore
+# takes a uid of its own from this range, held by a lock while it runs.
+SANDBOX_UIDS = range(SANDBOX_UID, SANDBOX_UID + 256)
+
+
+def _uid_lock_dir():
+    """A directory only this user can enter, for the uid locks (a worker in
+    the fallback without namespaces shares /tmp and must not hold them)."""
+    path = os.path.join(tempfile.gettempdir(), 'lrt-sandbox-uids-%d' % os.geteuid())
+    try:
+        os.mkdir(path, 0o700)
+    except FileExistsError:
+        pass
+    info = os.lstat(path)
+    if (not stat.S_ISDIR(info.st_mode) or info.st_uid != os.geteuid()
+            or info.st_mode & 0o077):
+        raise RuntimeError('%s is not a directory of this user alone' % path)
+    return path
+
+
+@functools.lru_cache(maxsize=None)
+def sandbox_uid():
+    """The uid of this grader's workers: the first of SANDBOX_UIDS that no
+    other running grader holds."""
+    directory = _uid_lock_dir()
+    for uid in SANDBOX_UIDS:
+        fd = os.open(os.path.join(directory, '%d.lock' % uid), os.O_RDWR | os.O_CREAT, 0o600)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            continue
+        return uid      # fd stays open, and the lock held, until this process ends
+    raise RuntimeError('no free sandbox uid: %d graders are running' % len(SANDBOX_UIDS))
+
+
 def _drop_privileges():
     """setpriv's arguments that make a root grader's sandbox unprivileged."""
     if not _is_root():
         return []
-    return ['setpriv', '--reuid=%d' % SANDBOX_UID, '--regid=%d' % SANDBOX_UID,
+    uid = sandbox_uid()
+    return ['setpriv', '--reuid=%d' % uid, '--regid=%d' % uid,
             '--clear-groups', '--no-new-privs', '--']
 
 

@@ -87,21 +87,9 @@ end
 
 -- Highlighted code as LaTeX, and its number of lines.
 local function highlight(lines)
-  local placeholders = {}
-  for i, line in ipairs(lines) do
-    local indent, used = line:match(fragments.USE_LINE)
-    if used then
-      placeholders[#placeholders + 1] = used
-      lines[i] = indent .. 'LRTFRAGMENTUSE' .. #placeholders .. 'X'
-    else
-      lines[i] = fragments.unescape_noweb(line)
-    end
-  end
-  local code = pandoc.CodeBlock(table.concat(lines, '\n'), {class = 'cpp'})
-  local latex = code_carets(pandoc.write(pandoc.Pandoc({code}), 'latex'))
-  latex = latex:gsub('LRTFRAGMENTUSE(%d+)X', function(i)
-    return '\\fraguse{' .. book.ids[placeholders[tonumber(i)]] .. '}'
-  end)
+  local latex = code_carets(fragments.highlight(lines, 'latex', function(name)
+    return '\\fraguse{' .. book.ids[name] .. '}'
+  end))
   local body = latex:match('\\begin{Highlighting}%[%]\n(.-)\n\\end{Highlighting}')
   local count = 0
   for _ in ((body or '') .. '\n'):gmatch('[^\n]*\n') do count = count + 1 end
@@ -147,17 +135,8 @@ local function render_plain_code(block)
 end
 
 -- A fragment shown as an example in the prose (see the comment at the top).
-local SAMPLE = {['fragment-header'] = true, ['fragment-use'] = true,
-                ['fragment-number'] = true}
-
-local function sample_class(code)
-  for _, class in ipairs(code.classes) do
-    if SAMPLE[class] then return class end
-  end
-end
-
 local function render_sample(code)
-  local class = sample_class(code)
+  local class = fragments.sample_class(code)
   if not class then return nil end
   local first = book:fragment(code.text, 'the example `' .. code.text .. '`{.' .. class .. '}')
   if class == 'fragment-number' then
@@ -219,11 +198,6 @@ local function short_caption(latex)
          latex:sub(open)
 end
 
-local function is_figure(block)
-  return block.t == 'Para' and #block.content == 1 and block.content[1].t == 'Image'
-         and block.content[1].title:match('^fig:') ~= nil
-end
-
 -------------------------------------------------------------------------------
 -- The indexes
 
@@ -269,22 +243,11 @@ end
 -------------------------------------------------------------------------------
 -- Cross-references and equations
 
-local missing = {}
-
 -- A reference to a fourth-level heading names the numbered section around
 -- it: LaTeX numbers sections to the third level only (tools/preamble.tex).
 local function crossref(cite)
-  if #cite.citations ~= 1 then return nil end
-  local id = cite.citations[1].id
-  local kind = id:match('^(%a+):')
-  if not (kind == 'sec' or kind == 'fig' or kind == 'eq' or kind == 'tbl') then
-    return nil
-  end
-  local target = book.labels[id]
-  if not target then
-    missing[#missing + 1] = id
-    return nil
-  end
+  local id, kind, target = book:reference(cite)
+  if not id then return nil end
   if kind == 'eq' then
     return pandoc.RawInline('latex', '\\hyperref[' .. id .. ']{Equation~(\\ref*{' ..
                             id .. '})}')
@@ -296,32 +259,11 @@ local function crossref(cite)
   return pandoc.RawInline('latex', text)
 end
 
--- `$$ x $$ {#eq:id}` arrives as Math followed by Str "{#eq:id}".
 local function number_equations(inlines)
-  local out, i = {}, 1
-  while i <= #inlines do
-    local el = inlines[i]
-    if el.t == 'Math' and el.mathtype == 'DisplayMath' then
-      local j = i + 1
-      while inlines[j] and (inlines[j].t == 'Space' or inlines[j].t == 'SoftBreak') do
-        j = j + 1
-      end
-      local label = inlines[j] and inlines[j].t == 'Str' and
-                    inlines[j].text:match('^{#(eq:[%w_:%-]+)}$')
-      if label then
-        out[#out + 1] = pandoc.RawInline('latex', '\\begin{equation}' .. el.text ..
-                                         '\\label{' .. label .. '}\\end{equation}')
-        i = j + 1
-      else
-        out[#out + 1] = el
-        i = i + 1
-      end
-    else
-      out[#out + 1] = el
-      i = i + 1
-    end
-  end
-  return out
+  return fragments.number_equations(inlines, function(math, label)
+    return pandoc.RawInline('latex', '\\begin{equation}' .. math.text ..
+                            '\\label{' .. label .. '}\\end{equation}')
+  end)
 end
 
 -------------------------------------------------------------------------------
@@ -366,7 +308,7 @@ function Pandoc(doc)
       return render_plain_code(block)
     end,
     Para = function(para)
-      if is_figure(para) then
+      if fragments.is_figure(para) then
         return pandoc.RawBlock('latex', short_caption(
           pandoc.write(pandoc.Pandoc({para}), 'latex')))
       end
@@ -382,10 +324,18 @@ function Pandoc(doc)
       end
     end,
   })
-  if #missing > 0 then
-    fail('references to undefined labels: ' .. table.concat(missing, ', '))
+  if #book.missing > 0 then
+    fail('references to undefined labels: ' .. table.concat(book.missing, ', '))
   end
 
+  -- LaTeX numbers the chapters after \appendix A, B, ...: put it before the
+  -- first appendix (a level-1 header of class appendix).
+  for i, block in ipairs(doc.blocks) do
+    if block.t == 'Header' and block.level == 1 and block.classes:includes('appendix') then
+      doc.blocks:insert(i, pandoc.RawBlock('latex', '\\appendix'))
+      break
+    end
+  end
   table.insert(doc.blocks, 1, pandoc.RawBlock('latex', fragment_names()))
   doc.blocks:insert(pandoc.RawBlock('latex', '\\backmatter'))
   if doc.meta.bibliography then

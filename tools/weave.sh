@@ -21,7 +21,7 @@ printf '$highlighting-macros$\n' > "$out/macros.template"
 printf '```cpp\nint x;\n```\n' |
     pandoc -s -t latex --highlight-style="$tools/highlight.theme" \
         --template="$out/macros.template" > "$out/preamble.tex"
-cat "$tools/preamble.tex" >> "$out/preamble.tex"
+cat "$tools/tikz-preamble.tex" "$tools/preamble.tex" >> "$out/preamble.tex"
 
 # citeproc runs after weave.lua, which resolves @sec:, @fig:, @eq: and @tbl:
 # itself; citeproc only warns about a key that the bibliography lacks.

@@ -1,4 +1,4 @@
-// bench/bvhbench.cpp: tangled from chapters/06-bvh.md. Edit the chapter, not this file.
+// bench/bvhbench.cpp: tangled from chapters/08-bvh-benchmark.md. Edit the chapter, not this file.
 #include "lrt/lrt.h"
 
 #include <benchmark/benchmark.h>
@@ -441,6 +441,39 @@ class BenchReporter : public benchmark::ConsoleReporter {
     std::map<std::string, Rounds> rounds;
 };
 // BVH Benchmark Output Functions
+struct BuildConfiguration {
+    std::string compiler, command, flags;
+};
+
+BuildConfiguration ThisBuild() {
+    BuildConfiguration b;
+#if defined(__clang__)
+    b.compiler = "Clang " __clang_version__;
+#elif defined(__GNUC__)
+    b.compiler = "GCC " __VERSION__;
+#else
+    b.compiler = "unknown compiler";
+#endif
+#if defined(LRT_BENCH_CXX) && defined(LRT_BENCH_CXXFLAGS)
+    b.command = LRT_BENCH_CXX;
+    b.flags = LRT_BENCH_CXXFLAGS;
+#else
+    b.command = b.flags = "not recorded";
+#endif
+    while (!b.compiler.empty() && b.compiler.back() == ' ')
+        b.compiler.pop_back();
+    return b;
+}
+
+std::string JSONString(const std::string &s) {
+    std::string quoted = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') quoted += '\\';
+        quoted += c;
+    }
+    return quoted + '"';
+}
+// BVH Benchmark Output Functions
 const char *ReferenceCheck(const std::string &mesh, const std::string &rays,
                            double hits) {
     if (mesh.compare(0, 7, "bunny_L") != 0 || mesh == "bunny_L0") return "";
@@ -454,6 +487,9 @@ const char *ReferenceCheck(const std::string &mesh, const std::string &rays,
 void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
                   const std::vector<RaySet> &raySets,
                   const BenchOptions &opt, const BenchReporter &rep) {
+    BuildConfiguration build = ThisBuild();
+    std::printf("\nbuilt with %s %s (%s)\n", build.command.c_str(),
+                build.flags.c_str(), build.compiler.c_str());
     for (const auto &mesh : meshes) {
         std::printf("\n%s: %zu triangles; medians of %d builds and %d "
                     "passes\n", mesh->name.c_str(), mesh->prims.size(),
@@ -510,9 +546,13 @@ void WriteJSON(const std::string &filename,
                const std::vector<std::unique_ptr<BenchMesh>> &meshes,
                const std::vector<RaySet> &raySets, const BenchOptions &opt,
                const BenchReporter &rep) {
+    BuildConfiguration build = ThisBuild();
     std::ostringstream js;
     js << "{\n  \"float\": \"" << (sizeof(Float) == 4 ? "float" : "double")
-       << "\",\n  \"passes\": " << opt.passes
+       << "\",\n  \"compiler\": " << JSONString(build.compiler)
+       << ",\n  \"cxx\": " << JSONString(build.command)
+       << ",\n  \"cxxflags\": " << JSONString(build.flags)
+       << ",\n  \"passes\": " << opt.passes
        << ",\n  \"build_repetitions\": " << opt.buildRepetitions
        << ",\n  \"results\": [";
     const char *sep = "\n";
@@ -528,6 +568,12 @@ void WriteJSON(const std::string &filename,
                    << "\", \"version\": \"" << v << "\", \"build_ms\": " << b->cpuMs;
                 for (const char *k : {"nodes", "leaves", "leaf_size", "sah_cost", "depth"})
                     js << ", \"" << k << "\": " << b->counters.at(k);
+                auto first = [&](const std::string &what) {
+                    return BenchName(*mesh, m, "first", what);
+                };
+                if (auto r = rep.PairedRatio(BenchName(*mesh, m, v, "build"),
+                                             first("build"), ""))
+                    js << ", \"build_ratio\": " << *r;
                 js << ", \"rays\": {";
                 const char *raySep = "";
                 for (const RaySet &rays : raySets) {
@@ -536,7 +582,11 @@ void WriteJSON(const std::string &filename,
                     js << raySep << "\"" << rays.name << "\": {\"mrays_per_s\": "
                        << t->counters.at("Mrays/s") << ", \"hits\": "
                        << t->counters.at("hits") << ", \"sum_t\": "
-                       << t->counters.at("sum_t") << "}";
+                       << t->counters.at("sum_t");
+                    if (auto r = rep.PairedRatio(BenchName(*mesh, m, v, rays.name),
+                                                 first(rays.name), "Mrays/s"))
+                        js << ", \"ratio\": " << *r;
+                    js << "}";
                     raySep = ", ";
                 }
                 js << "}}";

@@ -1,7 +1,8 @@
-// Double-precision helpers shared by the quadric oracles of
-// test_sphere.cpp and test_disk.cpp: a small vector type, conversions to and
-// from lrt's types, a seeded random source, and affine transformations with
-// inverses written down from their factors (independent of lrt's Inverse).
+// Helpers shared by the quadric oracles of test_sphere.cpp, test_disk.cpp
+// and test_far.cpp: a small vector type (in double and in long double
+// precision), conversions to and from lrt's types, a seeded random source,
+// and affine transformations with inverses written down from their factors
+// (independent of lrt's Inverse).
 #pragma once
 
 #include "lrt/lrt.h"
@@ -15,35 +16,69 @@ namespace {
 
 typedef long double LD;
 
-struct D3 {
-    double x = 0, y = 0, z = 0;
-    D3() {}
-    D3(double x, double y, double z) : x(x), y(y), z(z) {}
-    double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+// A vector of three numbers of type T: D3 in double precision for most
+// oracles, L3 in long double where double is not accurate enough.
+template <typename T>
+struct V3 {
+    typedef T Scalar;
+    T x = 0, y = 0, z = 0;
+    V3() {}
+    V3(T x, T y, T z) : x(x), y(y), z(z) {}
+    T operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
 };
-D3 operator+(D3 a, D3 b) { return D3(a.x + b.x, a.y + b.y, a.z + b.z); }
-D3 operator-(D3 a, D3 b) { return D3(a.x - b.x, a.y - b.y, a.z - b.z); }
-D3 operator*(double s, D3 a) { return D3(s * a.x, s * a.y, s * a.z); }
-double dot3(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-D3 cross3(D3 a, D3 b) {
-    return D3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
-              a.x * b.y - a.y * b.x);
+typedef V3<double> D3;
+typedef V3<LD> L3;
+template <typename T>
+V3<T> operator+(V3<T> a, V3<T> b) {
+    return V3<T>(a.x + b.x, a.y + b.y, a.z + b.z);
 }
-double len3(D3 a) { return std::sqrt(dot3(a, a)); }
-D3 norm3(D3 a) { return (1 / len3(a)) * a; }
-double dist3(D3 a, D3 b) { return len3(a - b); }
+template <typename T>
+V3<T> operator-(V3<T> a, V3<T> b) {
+    return V3<T>(a.x - b.x, a.y - b.y, a.z - b.z);
+}
+template <typename T>
+V3<T> operator*(typename V3<T>::Scalar s, V3<T> a) {
+    return V3<T>(s * a.x, s * a.y, s * a.z);
+}
+template <typename T>
+T dot3(V3<T> a, V3<T> b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <typename T>
+V3<T> cross3(V3<T> a, V3<T> b) {
+    return V3<T>(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+                 a.x * b.y - a.y * b.x);
+}
+template <typename T>
+T len3(V3<T> a) {
+    return std::sqrt(dot3(a, a));
+}
+template <typename T>
+V3<T> norm3(V3<T> a) {
+    return (1 / len3(a)) * a;
+}
+template <typename T>
+T dist3(V3<T> a, V3<T> b) {
+    return len3(a - b);
+}
 
-D3 ToD(const lrt::Point3f &p) { return D3(p.x, p.y, p.z); }
-D3 ToD(const lrt::Vector3f &v) { return D3(v.x, v.y, v.z); }
-D3 ToD(const lrt::Normal3f &n) { return D3(n.x, n.y, n.z); }
-lrt::Point3f ToP(D3 a) { return lrt::Point3f(a.x, a.y, a.z); }
-lrt::Vector3f ToV(D3 a) { return lrt::Vector3f(a.x, a.y, a.z); }
+inline D3 ToD(const lrt::Point3f &p) { return D3(p.x, p.y, p.z); }
+inline D3 ToD(const lrt::Vector3f &v) { return D3(v.x, v.y, v.z); }
+inline D3 ToD(const lrt::Normal3f &n) { return D3(n.x, n.y, n.z); }
+template <typename T>
+lrt::Point3f ToP(V3<T> a) {
+    return lrt::Point3f(lrt::Float(a.x), lrt::Float(a.y), lrt::Float(a.z));
+}
+template <typename T>
+lrt::Vector3f ToV(V3<T> a) {
+    return lrt::Vector3f(lrt::Float(a.x), lrt::Float(a.y), lrt::Float(a.z));
+}
 
 // Rounds a double to the nearest Float. The volatile keeps GCC 12.2 at -O2
 // from folding two adjacent float truncations and extensions into a no-op
 // when its SLP vectorizer combines them (a miscompilation observed with
 // Debian's g++ 12.2.0).
-double ToFloat(double x) {
+inline double ToFloat(double x) {
     volatile lrt::Float f = lrt::Float(x);
     return f;
 }

@@ -1,6 +1,10 @@
-"""Tests of chapter 6's benchmark program, bench/bvhbench.cpp, as a user runs
-it: options that select only part of the benchmarks must give a clear
-message, never a crash.
+"""Tests of chapter 6's benchmark, bench/bvhbench.cpp and its make rules
+(tools/bench.mk), as a user runs them: options that select only part of the
+benchmarks must give a clear message, never a crash; a configuration of
+compiler and flags builds the library and the program with them, in a
+directory of its own, and is named in the table and the JSON; an unknown
+compiler is a clear error; tools/bench_table.py turns the JSON of several
+configurations into one table.
 
 The program is built with `make bench-build` (the same rule `make` uses), in
 the default configuration: the make that runs these tests may carry
@@ -9,13 +13,19 @@ variables are kept out of the inner make. The program makes its own data
 from data/bunny.ply (3,674 triangles); nothing here measures time.
 """
 import glob
+import json
 import os
+import re
+import struct
 import subprocess
+import sys
 import tempfile
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
+MAKE_VARIABLES = ('MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'MAKEOVERRIDES', 'SANITIZE',
+                  'FLOAT', 'BUILD', 'CH', 'UPTO', 'BENCH_CXX', 'BENCH_CXXFLAGS')
 
 
 def last_chapter_number():
@@ -25,7 +35,7 @@ def last_chapter_number():
 
 def has_benchmark():
     """Whether a chapter of this book writes the benchmark (a kit of the
-    chapters before 6 has none: tools/bench.mk then builds nothing)."""
+    chapters before the appendix has none: tools/bench.mk then builds nothing)."""
     for path in glob.glob(os.path.join(ROOT, 'chapters', '[0-9][0-9]-*.md')):
         with open(path, encoding='utf-8') as f:
             if '\n<<bench/bvhbench.cpp>>=\n' in f.read():
@@ -33,28 +43,41 @@ def has_benchmark():
     return False
 
 
+def make(*args):
+    env = {k: v for k, v in os.environ.items() if k not in MAKE_VARIABLES}
+    return subprocess.run(['make', '--no-print-directory'] + list(args),
+                          cwd=ROOT, env=env, capture_output=True, text=True)
+
+
+def default_compiler():
+    # make's own default, unless the environment names another
+    return os.environ.get('CXX', 'g++')
+
+
+def write_rays(path, rays):
+    with open(path, 'wb') as f:
+        for ray in rays:
+            f.write(struct.pack('<6f', *ray))
+
+
 @unittest.skipUnless(has_benchmark(), 'no chapter of this book writes the benchmark')
 class BenchProgramTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        env = {k: v for k, v in os.environ.items()
-               if k not in ('MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'MAKEOVERRIDES',
-                            'SANITIZE', 'FLOAT', 'BUILD', 'CH', 'UPTO')}
-        build = subprocess.run(['make', '--no-print-directory', 'bench-build'],
-                               cwd=ROOT, env=env, capture_output=True, text=True)
+        build = make('bench-build')
         if build.returncode != 0:
             raise AssertionError('make bench-build failed:\n' + build.stdout +
                                  build.stderr)
         cls.binary = os.path.join(ROOT, 'build', 'float', 'asof',
                                   last_chapter_number(), 'bench', 'bvhbench')
 
-    def run_bench(self, benchmark_filter):
+    def run_bench(self, benchmark_filter, json_file=None):
         with tempfile.TemporaryDirectory() as tmp:
             return subprocess.run(
                 [self.binary, '--data', os.path.join(tmp, 'none'),
                  '--mesh', 'data/bunny.ply', '--methods', 'sah',
                  '--passes', '1', '--builds', '1',
-                 '--json', os.path.join(tmp, 'out.json'),
+                 '--json', json_file or os.path.join(tmp, 'out.json'),
                  '--benchmark_filter=' + benchmark_filter,
                  '--benchmark_color=false'],
                 cwd=ROOT, capture_output=True, text=True, timeout=300)
@@ -85,6 +108,156 @@ class BenchProgramTest(unittest.TestCase):
         self.assertEqual(len(hits.get('first', [])), 2, r.stdout)
         self.assertEqual(hits['first'], hits['adopted'])
         self.assertGreater(min(hits['first']), 0)
+
+    def test_default_configuration_is_named_with_the_ratios(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, 'out.json')
+            r = self.run_bench('first|final', out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(out, encoding='utf-8') as f:
+                data = json.load(f)
+        self.assertEqual((data['cxx'], data['cxxflags']), (default_compiler(), '-O2'))
+        self.assertIn('built with %s -O2 (%s)' % (data['cxx'], data['compiler']),
+                      r.stdout)
+        # The JSON's ratios are the ones the table prints, to its two digits:
+        # for the camera rays, the incoherent rays and the build.
+        printed = re.search(r'^SAH .* build [0-9.]+x$', r.stdout, re.M)
+        self.assertIsNotNone(printed, r.stdout)
+        final, = [x for x in data['results'] if x['version'] == 'final']
+        first, = [x for x in data['results'] if x['version'] == 'first']
+        rays = list(final['rays'])  # in the order of the ray sets
+        self.assertEqual(['%.2f' % final['rays'][k]['ratio'] for k in rays] +
+                         ['%.2f' % final['build_ratio']],
+                         re.findall(r' ([0-9.]+)x', printed.group(0)))
+        self.assertEqual([first['rays'][k]['ratio'] for k in rays], [1, 1])
+
+
+@unittest.skipUnless(has_benchmark(), 'no chapter of this book writes the benchmark')
+class BenchConfigurationTest(unittest.TestCase):
+    """A configuration other than the default, built into a scratch BUILD:
+    -O0, because it compiles fastest, and a macro whose '=' the directory's
+    name must replace."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.build_dir = os.path.join(cls.tmp.name, 'build')
+        cls.build = make('bench-build', 'BUILD=' + cls.build_dir,
+                         'BENCH_CXXFLAGS=-O0 -DLRT_UNUSED_MACRO=1')
+        if cls.build.returncode != 0:
+            raise AssertionError('make bench-build failed:\n' + cls.build.stdout +
+                                 cls.build.stderr)
+        cls.config_dir = os.path.join(cls.build_dir, 'bench',
+                                      default_compiler() + '_-O0_-DLRT_UNUSED_MACRO_1')
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_library_and_program_are_built_with_the_flags_in_their_directory(self):
+        commands = self.build.stdout.replace('\\\n', ' ')
+        compiles = [line for line in commands.splitlines()
+                    if re.search(r' -c \S+\.cpp ', line) or 'bvhbench.cpp' in line]
+        library = [c for c in compiles if '/lrt/' in c]
+        self.assertGreater(len(library), 5, self.build.stdout)
+        self.assertEqual(len(compiles) - len(library), 1, self.build.stdout)
+        for c in compiles:
+            self.assertTrue(c.startswith(default_compiler() + ' '), c)
+            self.assertIn(' -O0 -DLRT_UNUSED_MACRO=1 ', c)
+            self.assertIn(self.config_dir, c)
+        self.assertTrue(os.path.isfile(os.path.join(
+            self.config_dir, 'float', 'asof', last_chapter_number(), 'liblrt.a')))
+
+    def test_configuration_is_named_in_table_and_json(self):
+        binary = os.path.join(self.config_dir, 'float', 'asof',
+                              last_chapter_number(), 'bench', 'bvhbench')
+        out = os.path.join(self.tmp.name, 'out.json')
+        rays = os.path.join(self.tmp.name, 'rays.bin')
+        # a few rays through the bunny's bounds, and a few that miss them
+        write_rays(rays, [(-0.2 + 0.01 * i, 0.1, 1, 0, 0, -1) for i in range(40)] +
+                   [(5, 5, 5, 0, 0, 1)] * 4)
+        r = subprocess.run([binary, '--mesh', 'data/bunny.ply', '--rays', rays,
+                            '--methods', 'sah', '--passes', '1', '--builds', '1',
+                            '--json', out, '--benchmark_color=false'],
+                           cwd=ROOT, capture_output=True, text=True, timeout=300)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out, encoding='utf-8') as f:
+            data = json.load(f)
+        self.assertEqual(data['cxx'], default_compiler())
+        self.assertEqual(data['cxxflags'], '-O0 -DLRT_UNUSED_MACRO=1')
+        self.assertRegex(data['compiler'], r'^(GCC|Clang) [0-9]+\.[0-9]')
+        self.assertIn('built with %s -O0 -DLRT_UNUSED_MACRO=1 (%s)'
+                      % (data['cxx'], data['compiler']), r.stdout)
+
+    def test_unknown_compiler_is_a_clear_error(self):
+        r = make('bench-build', 'BUILD=' + self.build_dir,
+                 'BENCH_CXX=no-such-compiler++')
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn('make bench: BENCH_CXX=no-such-compiler++: no such compiler',
+                      r.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.build_dir, 'bench',
+                                                     'no-such-compiler++_-O2')))
+
+
+class BenchTableTest(unittest.TestCase):
+    """tools/bench_table.py --configurations: one row per JSON file."""
+
+    @staticmethod
+    def record(version, mesh, triangles, speeds, ratios):
+        return {'mesh': mesh, 'triangles': triangles, 'method': 'SAH',
+                'version': version, 'build_ms': 10.0, 'build_ratio': 0.5,
+                'rays': {name: {'mrays_per_s': s, 'hits': 1, 'sum_t': 1.0,
+                                'ratio': q}
+                         for name, s, q in zip(('rays_primary.bin',
+                                                'rays_incoherent.bin'),
+                                               speeds, ratios)}}
+
+    def run_table(self, files):
+        with tempfile.TemporaryDirectory() as tmp:
+            paths = []
+            for i, data in enumerate(files):
+                paths.append(os.path.join(tmp, '%d.json' % i))
+                with open(paths[-1], 'w', encoding='utf-8') as f:
+                    json.dump(data, f)
+            return subprocess.run(
+                [sys.executable, os.path.join(ROOT, 'tools', 'bench_table.py'),
+                 '--configurations'] + paths, capture_output=True, text=True)
+
+    def configuration(self, cxx, flags, speed):
+        results = []
+        for mesh, triangles in (('bunny_L4', 940544), ('bunny_L2', 58784)):
+            results.append(self.record('first', mesh, triangles, (1, 0.5), (1, 1)))
+            results.append(self.record('final', mesh, triangles,
+                                       (speed, speed / 4), (2.5, 4.25)))
+        return {'cxx': cxx, 'cxxflags': flags, 'compiler': 'GCC 12.2.0',
+                'results': results}
+
+    def test_one_row_per_configuration_meshes_by_size(self):
+        r = self.run_table([self.configuration('g++', '-O2', 10.9),
+                            self.configuration('clang++', '-O3 -march=native', 7.51)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = r.stdout.splitlines()
+        self.assertEqual(lines[0], '| compiler and flags | 58,784, camera | '
+                         '58,784, incoherent | 940,544, camera | '
+                         '940,544, incoherent |')
+        self.assertEqual(lines[2], '| `g++ -O2` | 10.9 (2.50×) | 2.73 (4.25×) | '
+                         '10.9 (2.50×) | 2.73 (4.25×) |')
+        self.assertTrue(lines[3].startswith('| `clang++ -O3 -march=native` | 7.51 '))
+        self.assertEqual(len(lines), 4)
+
+    def test_a_file_without_the_configuration_is_an_error(self):
+        old = self.configuration('g++', '-O2', 10)
+        del old['cxx']
+        r = self.run_table([self.configuration('g++', '-O3', 10), old])
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn('1.json: the compiler and flags are not recorded', r.stderr)
+
+    def test_a_missing_ratio_is_an_error(self):
+        c = self.configuration('g++', '-O3', 10)
+        del c['results'][1]['rays']['rays_incoherent.bin']['ratio']
+        r = self.run_table([c])
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn('0.json: 940544 triangles: no rays_incoherent.bin', r.stderr)
 
 
 if __name__ == '__main__':

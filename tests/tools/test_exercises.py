@@ -7,6 +7,7 @@ with a generated stub, one with a stub block), public and hidden tests. Each
 broken variant changes one thing in a copy of it, and its test asserts the
 file:line the lint names.
 """
+import glob
 import json
 import os
 import re
@@ -451,6 +452,23 @@ class KitTest(unittest.TestCase):
             self.assertIn('lrt-%s/book.pdf' % edition, names)
             self.assertEqual(any('/tests/hidden/' in n for n in names),
                              edition == 'solution')
+
+    def test_web_pages(self):
+        # Both kits have the book as web pages too; the leak check reads their
+        # text, so the solution kit's pages, checked as a student kit's, leak.
+        def text(edition):
+            pages = sorted(glob.glob(os.path.join(self.out, edition, 'html', '*.html')))
+            self.assertTrue(pages, edition)
+            return '\n'.join(exercise_kits.html_text(read(p)) for p in pages)
+        student, solution = text('student'), text('solution')
+        self.assertIn('Exercise 1.2', student)
+        self.assertIn('"Exercise ex-2.1 is not done yet', student)
+        line = 'sumOfSquares += static_cast<long>(value) * value;'
+        self.assertNotIn(line, student)
+        self.assertIn(line, solution)
+        problems = '\n'.join(self.leaks(self.out, 'solution'))
+        self.assertRegex(problems, r'solution/html/01-sums\.html:\d+: solution of ex-1\.1')
+        self.assertRegex(problems, r'lrt-solution\.tar\.gz:lrt-solution/html/\S+\.html:\d+:')
 
     def copy_of_student_kit(self):
         out = tempfile.mkdtemp()

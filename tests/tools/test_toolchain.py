@@ -185,6 +185,21 @@ class WeaveTest(unittest.TestCase):
         self.assertIn('\\identindexentry{Shifted}', result.stdout)
         self.assertNotIn('@<<', result.stdout)
 
+    def test_appendix_is_lettered(self):
+        result = self.weave('# Ch\n\n```cpp\n<<lrt/x.h>>=\nint x;\n@\n```\n\n'
+                            '# App {#sec:app .appendix}\n\nSee @sec:app.\n\n'
+                            '```cpp\n<<lrt/y.h>>=\nint y;\n@\n```\n')
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn('\\fragheader{chunk:1.1}{1.1}', result.stdout)
+        self.assertIn('\\fragheader{chunk:A.1}{A.1}', result.stdout)
+        self.assertIn('Appendix~\\ref*{sec:app}', result.stdout)
+        self.assertLess(result.stdout.index('\\appendix'), result.stdout.index('{App}'))
+
+    def test_chapter_after_an_appendix_fails(self):
+        result = self.weave('# App {.appendix}\n\nText.\n\n# Ch\n\nText.\n')
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn('stands after an appendix', result.stderr)
+
     def test_disagreement_with_noweb_fails(self):
         # Inside an HTML comment pandoc sees no code while noweb still tangles
         # the chunk: the book would not show code that is compiled.

@@ -285,11 +285,14 @@ BVHBuildNode *BVHAccel::recursiveBuild(
                              });
         }
     }
-    node->InitInterior(dim,
-                       recursiveBuild(arena, primitiveInfo, start, mid,
-                                      depth + 1, totalNodes, orderedPrims),
-                       recursiveBuild(arena, primitiveInfo, mid, end,
-                                      depth + 1, totalNodes, orderedPrims));
+    // The first child is built first, so its primitives come first in
+    // orderedPrims; as two arguments of one call, the builds would run in an
+    // order each compiler chooses for itself (GCC's is the second first)
+    BVHBuildNode *c0 = recursiveBuild(arena, primitiveInfo, start, mid,
+                                      depth + 1, totalNodes, orderedPrims);
+    BVHBuildNode *c1 = recursiveBuild(arena, primitiveInfo, mid, end,
+                                      depth + 1, totalNodes, orderedPrims);
+    node->InitInterior(dim, c0, c1);
     return node;
 }
 // BVHAccel Method Definitions

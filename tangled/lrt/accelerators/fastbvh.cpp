@@ -391,12 +391,14 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     // Compute scaled hit distance to triangle and test against ray t range
     Float z0 = Sz * p0t.z, z1 = Sz * p1t.z, z2 = Sz * p2t.z;
     Float tScaled = e0 * z0 + e1 * z1 + e2 * z2;
-    bool inRange = det > 0 ? (tScaled > 0 && tScaled <= ray.tMax * det)
-                           : (tScaled < 0 && tScaled >= ray.tMax * det);
+    Float tMaxScaled = ray.tMax * det * (1 + 2 * gamma(3));
+    bool inRange = det > 0 ? (tScaled > 0 && tScaled <= tMaxScaled)
+                           : (tScaled < 0 && tScaled >= tMaxScaled);
     if (!inRange) return false;
     // Compute t for the triangle hit
     Float invDet = 1 / det;
     Float t = tScaled * invDet;
+    if (!(t <= ray.tMax)) return false;
     // Ensure that computed triangle t is conservatively greater than zero
     // Compute delta_z term for triangle t error bounds
     Float maxZs = MaxAbs(z0, z1, z2);
@@ -520,6 +522,27 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
         {
             const Float *b = &node.bounds[0][0][0];
             Float t1[fastBVHWidth];
+        #if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
+            // Test the four boxes in the lanes of SSE2 registers
+            __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy), oz = _mm_set1_ps(r.oz);
+            __m128 ix = _mm_set1_ps(r.ix), iy = _mm_set1_ps(r.iy), iz = _mm_set1_ps(r.iz);
+            __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearX), ox), ix);
+            __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farX), ox), ix);
+            __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearY), oy), iy);
+            __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farY), oy), iy);
+            __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearZ), oz), iz);
+            __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farZ), oz), iz);
+            // _mm_max_ps(x, m) is std::max(m, x) in every lane, NaNs included, and
+            // _mm_min_ps(x, m) is std::min(m, x): the operand order matters
+            __m128 tNear = _mm_max_ps(tx0, _mm_setzero_ps());
+            tNear = _mm_max_ps(ty0, tNear);
+            tNear = _mm_max_ps(tz0, tNear);
+            __m128 tFar = _mm_min_ps(tx1, _mm_set1_ps(ray.tMax));
+            tFar = _mm_min_ps(ty1, tFar);
+            tFar = _mm_min_ps(tz1, tFar);
+            _mm_storeu_ps(t, tNear);
+            _mm_storeu_ps(t1, _mm_mul_ps(tFar, _mm_set1_ps(1 + 2 * gamma(3))));
+        #else
             for (int c = 0; c < fastBVHWidth; ++c) {
                 Float tx0 = (b[nearX + c] - r.ox) * r.ix;
                 Float tx1 = (b[farX + c] - r.ox) * r.ix;
@@ -531,6 +554,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1) *
                         (1 + 2 * gamma(3));
             }
+        #endif
             mask = EnteredChildren(t, t1);
         }
         (void)t;
@@ -549,6 +573,27 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
             {
                 const Float *b = &node.bounds[0][0][0];
                 Float t1[fastBVHWidth];
+            #if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
+                // Test the four boxes in the lanes of SSE2 registers
+                __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy), oz = _mm_set1_ps(r.oz);
+                __m128 ix = _mm_set1_ps(r.ix), iy = _mm_set1_ps(r.iy), iz = _mm_set1_ps(r.iz);
+                __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearX), ox), ix);
+                __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farX), ox), ix);
+                __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearY), oy), iy);
+                __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farY), oy), iy);
+                __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearZ), oz), iz);
+                __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farZ), oz), iz);
+                // _mm_max_ps(x, m) is std::max(m, x) in every lane, NaNs included, and
+                // _mm_min_ps(x, m) is std::min(m, x): the operand order matters
+                __m128 tNear = _mm_max_ps(tx0, _mm_setzero_ps());
+                tNear = _mm_max_ps(ty0, tNear);
+                tNear = _mm_max_ps(tz0, tNear);
+                __m128 tFar = _mm_min_ps(tx1, _mm_set1_ps(ray.tMax));
+                tFar = _mm_min_ps(ty1, tFar);
+                tFar = _mm_min_ps(tz1, tFar);
+                _mm_storeu_ps(t, tNear);
+                _mm_storeu_ps(t1, _mm_mul_ps(tFar, _mm_set1_ps(1 + 2 * gamma(3))));
+            #else
                 for (int c = 0; c < fastBVHWidth; ++c) {
                     Float tx0 = (b[nearX + c] - r.ox) * r.ix;
                     Float tx1 = (b[farX + c] - r.ox) * r.ix;
@@ -560,6 +605,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                     t1[c] = std::min(std::min(std::min(ray.tMax, tx1), ty1), tz1) *
                             (1 + 2 * gamma(3));
                 }
+            #endif
                 mask = EnteredChildren(t, t1);
             }
             if (mask == 1) {

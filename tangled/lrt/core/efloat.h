@@ -153,6 +153,8 @@ class EFloat {
     }
     // EFloat Friends
     friend bool Quadratic(EFloat a, EFloat b, EFloat c, EFloat *t0, EFloat *t1);
+    friend bool QuadraticRoots(EFloat a, EFloat b, EFloat c, EFloat discrim,
+                               EFloat *t0, EFloat *t1);
 };
 
 // EFloat Inline Functions
@@ -169,6 +171,11 @@ inline bool Quadratic(EFloat a, EFloat b, EFloat c, EFloat *t0, EFloat *t1) {
     EFloat discrim = b * b - EFloat(4) * a * c;
     discrim.v = Clamp(DifferenceOfProducts(b.v, b.v, 4 * a.v, c.v), discrim.low,
                       discrim.high);
+    return QuadraticRoots(a, b, c, discrim, t0, t1);
+}
+
+inline bool QuadraticRoots(EFloat a, EFloat b, EFloat c, EFloat discrim,
+                           EFloat *t0, EFloat *t1) {
     if (!(discrim.v >= 0)) return false;
     EFloat rootDiscrim = sqrt(discrim);
     // Compute the EFloat roots from q

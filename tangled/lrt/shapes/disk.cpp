@@ -50,7 +50,7 @@ bool Disk::Intersect(const Ray &r, Float *tHit, SurfaceInteraction *isect,
     if (ray.d.z == 0) return false;
     EFloat tShapeHit = (EFloat(height) - EFloat(ray.o.z, oErr.z)) /
                        EFloat(ray.d.z, dErr.z);
-    if (!(tShapeHit.LowerBound() > 0 && tShapeHit.UpperBound() < ray.tMax))
+    if (!(tShapeHit.LowerBound() > 0 && (Float)tShapeHit <= ray.tMax))
         return false;
     // See if hit point is inside disk radii and phiMax
     Point3f pHit = ray((Float)tShapeHit);
@@ -95,7 +95,7 @@ bool Disk::IntersectP(const Ray &r, bool /*testAlphaTexture*/) const {
     if (ray.d.z == 0) return false;
     EFloat tShapeHit = (EFloat(height) - EFloat(ray.o.z, oErr.z)) /
                        EFloat(ray.d.z, dErr.z);
-    if (!(tShapeHit.LowerBound() > 0 && tShapeHit.UpperBound() < ray.tMax))
+    if (!(tShapeHit.LowerBound() > 0 && (Float)tShapeHit <= ray.tMax))
         return false;
     // See if hit point is inside disk radii and phiMax
     Point3f pHit = ray((Float)tShapeHit);

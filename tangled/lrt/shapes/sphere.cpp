@@ -54,17 +54,23 @@ bool Sphere::Intersect(const Ray &r, Float *tHit, SurfaceInteraction *isect,
     EFloat a = dx * dx + dy * dy + dz * dz;
     EFloat b = 2 * (dx * ox + dy * oy + dz * oz);
     EFloat c = ox * ox + oy * oy + oz * oz - EFloat(radius) * EFloat(radius);
+    // Compute the sphere's discriminant from the closest point
+    EFloat s = b / (2 * a);
+    EFloat fx = ox - s * dx, fy = oy - s * dy, fz = oz - s * dz;
+    EFloat fLength = sqrt(fx * fx + fy * fy + fz * fz);
+    EFloat discrim =
+        4 * a * (EFloat(radius) - fLength) * (EFloat(radius) + fLength);
     // Solve quadratic equation for t values
     EFloat t0, t1;
-    if (!Quadratic(a, b, c, &t0, &t1)) return false;
+    if (!QuadraticRoots(a, b, c, discrim, &t0, &t1)) return false;
     // Check quadric shape t0 and t1 for nearest intersection
-    if (!(t0.UpperBound() <= ray.tMax) || !(t1.LowerBound() > 0)) return false;
+    if (!((Float)t0 <= ray.tMax) || !(t1.LowerBound() > 0)) return false;
     EFloat tShapeHit = t0;
     bool usingFarRoot = false;
     if (!(tShapeHit.LowerBound() > 0)) {
         tShapeHit = t1;
         usingFarRoot = true;
-        if (!(tShapeHit.UpperBound() <= ray.tMax)) return false;
+        if (!((Float)tShapeHit <= ray.tMax)) return false;
     }
     // Compute sphere hit position and phi
     pHit = ray((Float)tShapeHit);
@@ -76,7 +82,7 @@ bool Sphere::Intersect(const Ray &r, Float *tHit, SurfaceInteraction *isect,
     // Test sphere intersection against clipping parameters
     if (IsClipped(pHit, phi)) {
         if (usingFarRoot) return false;
-        if (!(t1.UpperBound() <= ray.tMax)) return false;
+        if (!((Float)t1 <= ray.tMax)) return false;
         tShapeHit = t1;
         // Compute sphere hit position and phi
         pHit = ray((Float)tShapeHit);
@@ -144,17 +150,23 @@ bool Sphere::IntersectP(const Ray &r, bool /*testAlphaTexture*/) const {
     EFloat a = dx * dx + dy * dy + dz * dz;
     EFloat b = 2 * (dx * ox + dy * oy + dz * oz);
     EFloat c = ox * ox + oy * oy + oz * oz - EFloat(radius) * EFloat(radius);
+    // Compute the sphere's discriminant from the closest point
+    EFloat s = b / (2 * a);
+    EFloat fx = ox - s * dx, fy = oy - s * dy, fz = oz - s * dz;
+    EFloat fLength = sqrt(fx * fx + fy * fy + fz * fz);
+    EFloat discrim =
+        4 * a * (EFloat(radius) - fLength) * (EFloat(radius) + fLength);
     // Solve quadratic equation for t values
     EFloat t0, t1;
-    if (!Quadratic(a, b, c, &t0, &t1)) return false;
+    if (!QuadraticRoots(a, b, c, discrim, &t0, &t1)) return false;
     // Check quadric shape t0 and t1 for nearest intersection
-    if (!(t0.UpperBound() <= ray.tMax) || !(t1.LowerBound() > 0)) return false;
+    if (!((Float)t0 <= ray.tMax) || !(t1.LowerBound() > 0)) return false;
     EFloat tShapeHit = t0;
     bool usingFarRoot = false;
     if (!(tShapeHit.LowerBound() > 0)) {
         tShapeHit = t1;
         usingFarRoot = true;
-        if (!(tShapeHit.UpperBound() <= ray.tMax)) return false;
+        if (!((Float)tShapeHit <= ray.tMax)) return false;
     }
     // Compute sphere hit position and phi
     pHit = ray((Float)tShapeHit);
@@ -166,7 +178,7 @@ bool Sphere::IntersectP(const Ray &r, bool /*testAlphaTexture*/) const {
     // Test sphere intersection against clipping parameters
     if (IsClipped(pHit, phi)) {
         if (usingFarRoot) return false;
-        if (!(t1.UpperBound() <= ray.tMax)) return false;
+        if (!((Float)t1 <= ray.tMax)) return false;
         tShapeHit = t1;
         // Compute sphere hit position and phi
         pHit = ray((Float)tShapeHit);

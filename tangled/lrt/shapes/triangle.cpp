@@ -131,12 +131,14 @@ bool Triangle::IntersectP(const Ray &ray, bool) const {
     // Compute scaled hit distance to triangle and test against ray t range
     Float z0 = Sz * p0t.z, z1 = Sz * p1t.z, z2 = Sz * p2t.z;
     Float tScaled = e0 * z0 + e1 * z1 + e2 * z2;
-    bool inRange = det > 0 ? (tScaled > 0 && tScaled <= ray.tMax * det)
-                           : (tScaled < 0 && tScaled >= ray.tMax * det);
+    Float tMaxScaled = ray.tMax * det * (1 + 2 * gamma(3));
+    bool inRange = det > 0 ? (tScaled > 0 && tScaled <= tMaxScaled)
+                           : (tScaled < 0 && tScaled >= tMaxScaled);
     if (!inRange) return false;
     // Compute t for the triangle hit
     Float invDet = 1 / det;
     Float t = tScaled * invDet;
+    if (!(t <= ray.tMax)) return false;
     // Ensure that computed triangle t is conservatively greater than zero
     // Compute delta_z term for triangle t error bounds
     Float maxZs = MaxAbs(z0, z1, z2);
@@ -212,12 +214,14 @@ bool Triangle::Intersect(const Ray &ray, Float *tHit,
     // Compute scaled hit distance to triangle and test against ray t range
     Float z0 = Sz * p0t.z, z1 = Sz * p1t.z, z2 = Sz * p2t.z;
     Float tScaled = e0 * z0 + e1 * z1 + e2 * z2;
-    bool inRange = det > 0 ? (tScaled > 0 && tScaled <= ray.tMax * det)
-                           : (tScaled < 0 && tScaled >= ray.tMax * det);
+    Float tMaxScaled = ray.tMax * det * (1 + 2 * gamma(3));
+    bool inRange = det > 0 ? (tScaled > 0 && tScaled <= tMaxScaled)
+                           : (tScaled < 0 && tScaled >= tMaxScaled);
     if (!inRange) return false;
     // Compute t for the triangle hit
     Float invDet = 1 / det;
     Float t = tScaled * invDet;
+    if (!(t <= ray.tMax)) return false;
     // Ensure that computed triangle t is conservatively greater than zero
     // Compute delta_z term for triangle t error bounds
     Float maxZs = MaxAbs(z0, z1, z2);

@@ -162,6 +162,7 @@ class Choice:
             self.chosen = [e for e in book.exercises if e.chapter in self.numbers]
             self.points = {e.id: e.points for e in self.chosen}
             self.stubbed = {e.id for e in self.chosen}
+            self.later = set()
             return
         if chapters:
             fail('give CHAPTERS or PLAN, not both')
@@ -176,14 +177,15 @@ class Choice:
         self.chosen = [e for e in book.exercises if e.id in ids]
         self.numbers = sorted({e.chapter for e in self.chosen})
         self.points = dict(self.assignment.points)
-        self.stubbed = set(ids) | set(loaded.unreleased(assignment))
+        self.later = set(loaded.unreleased(assignment)) - set(ids)
+        self.stubbed = set(ids) | self.later
 
     def manifest(self):
         if self.assignment is None:
             return {}
         a = self.assignment.as_dict()
         a['plan'] = os.path.basename(self.plan)
-        return {'assignment': a, 'unreleased': sorted(self.stubbed - set(self.points))}
+        return {'assignment': a, 'unreleased': sorted(self.later)}
 
 
 def exercise_table(chosen, points):
@@ -205,13 +207,13 @@ def later_note(book, choice):
     """For the kit of an assignment of a plan: the stubs of exercises that
     later assignments set, which are not this one's to write."""
     last = max(choice.numbers)
-    later = [e for e in book.exercises if e.id in choice.stubbed and
-             e.id not in choice.points and e.chapter <= last]
+    later = [e for e in book.exercises if e.id in choice.later and e.chapter <= last]
     if not later:
         return ''
-    return ('\n\nThe exercises %s are stubs too: a later assignment sets them. Their '
-            'tests fail, and so may tests of later chapters that use their code; '
-            'leave them for now.' % ', '.join(e.id for e in later))
+    return ('\n\nThe exercises %s are stubs too: a later assignment sets them, and '
+            'their stubs say so. `make test` skips every test that reaches one of '
+            'them, naming the exercise, instead of failing it; leave them for now.'
+            % ', '.join(e.id for e in later))
 
 
 def readme(edition, book, kit_chapters, choice):
@@ -264,7 +266,7 @@ def write_kit(edition, src, out, book, choice, build_book):
         os.makedirs(os.path.dirname(target), exist_ok=True)
         stubbed = [e for e in chapter.exercises if e.id in choice.stubbed]
         if edition == 'student' and stubbed:
-            lines = exercises.student_edition(chapter, only=stubbed)
+            lines = exercises.student_edition(chapter, only=stubbed, later=choice.later)
         else:
             lines = chapter.lines
         with open(target, 'w', encoding='utf-8') as f:

@@ -586,7 +586,7 @@ class PlanKitTest(unittest.TestCase):
         student = os.path.join(self.out, 'student')
         ch1, ch2 = read(os.path.join(student, CH1)), read(os.path.join(student, CH2))
         self.assertIn('Exercise ex-2.1 is not done yet', ch2)
-        self.assertIn('Exercise ex-1.2 is not done yet', ch1)
+        self.assertIn('Exercise ex-1.2 comes with a later assignment', ch1)
         self.assertNotIn('Exercise ex-1.1 is not done yet', ch1)
         self.assertIn(read(os.path.join(FIXTURE, CH1)).split('<<Add up the squares of v>>=')[1]
                       .split('@\n')[0], ch1)
@@ -624,6 +624,43 @@ class PlanKitTest(unittest.TestCase):
         self.assertNotEqual(result.returncode, 0)
         self.assertIn(bad + ':10: assignment \'second\': ex-1.3 is not an exercise',
                       result.stderr)
+
+    def test_tests_reaching_a_later_assignments_stub_are_skipped(self):
+        # Two tests of ex-1.1, which no assignment sets (so it is solved in the
+        # kit), use ex-1.2, which the next assignment sets: one through an
+        # exercise call, one in its own check. In the student kit's make test
+        # both are skipped with the stub's message, as is ex-1.2's own test;
+        # ex-2.1's tests (this assignment's) still fail.
+        v = Variant(self)
+        v.replace('tests/ch01/exercise_calls.h', 'inline int Clamp(',
+                  'inline long SumOfClampedSquares(std::vector<int> v) {\n'
+                  '    for (int &x : v) x = lrt::Clamp(x, -3, 3);\n'
+                  '    return lrt::SumOfSquares(v);\n}\ninline int Clamp(')
+        v.replace('tests/ch01/exercise_calls.h', 'LRT_EXERCISE_CALL(Clamp)',
+                  'LRT_EXERCISE_CALL(Clamp)\nLRT_EXERCISE_CALL(SumOfClampedSquares)')
+        v.replace('tests/ch01/test_sums.cpp', 'TEST(SumOfSquares, EmptyVectorThrows)',
+                  'EXERCISE_TEST(Ex1_1_SumOfSquares, ClampedThroughACall) {\n'
+                  '    EXPECT_EQ(ex::SumOfClampedSquares(std::vector<int>{5, -1}), 10);\n}\n\n'
+                  'EXERCISE_TEST(Ex1_1_SumOfSquares, ClampedInTheCheck) {\n'
+                  '    EXPECT_EQ(ex::SumOfSquares(std::vector<int>{2}), Clamp(9, 0, 4));\n}\n\n'
+                  'TEST(SumOfSquares, EmptyVectorThrows)')
+        out = os.path.join(self.tmp, 'reaching')
+        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build', '--src',
+                      v.dir, '--out', out, '--no-book', '--plan', self.plan,
+                      '--assignment', 'first'])
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        student = os.path.join(out, 'student')
+        ch1 = exercise_kits.make(student, ['test', 'CH=01'])
+        self.assertEqual(ch1.returncode, 0, ch1.stdout + ch1.stderr)
+        later = ': Exercise ex-1.2 comes with a later assignment: leave <Clamp v to the range>'
+        for name in ('Ex1_1_SumOfSquares.ClampedThroughACall',
+                     'Ex1_1_SumOfSquares.ClampedInTheCheck', 'Ex1_2_Clamp.InsideAndOutside'):
+            self.assertIn('SKIPPED: asof01/ch01 %s%s' % (name, later), ch1.stdout)
+        self.assertIn('tests: 4 passed, 0 failed, 3 skipped', ch1.stdout)
+        ch2 = exercise_kits.make(student, ['test', 'CH=02'])
+        self.assertNotEqual(ch2.returncode, 0)
+        self.assertIn('FAILED: asof02/ch02 Ex2_1_Mean.SmallVectors', ch2.stdout)
+        self.assertNotIn('SKIPPED', ch2.stdout)
 
 
 class ValidationTest(unittest.TestCase):

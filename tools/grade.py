@@ -986,21 +986,23 @@ def submitters(name, path):
 
 
 def write_gradebook(path, exercises_graded, students):
-    """One row per student: Student, SIS Login ID, a column per exercise
-    (its points), Total. Canvas matches the rows to its students by SIS
-    Login ID; Moodle by the column one maps to an identifier at import. No
-    other rows (a "points possible" row would be a student that Moodle
-    cannot find). students: [(student, login, {exercise: points} or None if
-    the grader failed)]."""
+    """One row per student: Student, SIS Login ID, Section (empty), a column
+    per exercise (its points), Total. Canvas matches the rows to its students
+    by SIS Login ID and wants the Section column, which may be empty; Moodle
+    matches by the column one maps to an identifier at import. No other rows
+    (a "points possible" row would be a student that Moodle cannot find).
+    students: [(student, login, {exercise: points} or None if the grader
+    failed)]."""
     with open(path + '.tmp', 'w', newline='', encoding='utf-8') as f:
         w = csv.writer(f)
-        w.writerow(['Student', 'SIS Login ID'] + [e for e, _ in exercises_graded] + ['Total'])
+        w.writerow(['Student', 'SIS Login ID', 'Section'] +
+                   [e for e, _ in exercises_graded] + ['Total'])
         for student, login, points in sorted(students, key=lambda s: (s[1], s[0])):
             if points is None:      # the grader failed: no number rather than a wrong one
-                w.writerow([student, login] + [''] * (len(exercises_graded) + 1))
+                w.writerow([student, login, ''] + [''] * (len(exercises_graded) + 1))
                 continue
             values = [points.get(e, 0) for e, _ in exercises_graded]
-            w.writerow([student, login] + ['%g' % round(v, 4) for v in values] +
+            w.writerow([student, login, ''] + ['%g' % round(v, 4) for v in values] +
                        ['%g' % round(sum(values), 4)])
     os.replace(path + '.tmp', path)
 

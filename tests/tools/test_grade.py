@@ -624,8 +624,9 @@ class GradeTest(unittest.TestCase):
         with open(os.path.join(self.out, 'gradebook.csv'), newline='') as f:
             rows = list(csv.reader(f))
         order = [e for e in self.book if e in self.points]   # the book's order
-        self.assertEqual(rows[0], ['Student', 'SIS Login ID'] + order + ['Total'])
-        got = {(r[0], r[1]): r[2:] for r in rows[1:]}
+        self.assertEqual(rows[0], ['Student', 'SIS Login ID', 'Section'] + order + ['Total'])
+        self.assertEqual({r[2] for r in rows[1:]}, {''})
+        got = {(r[0], r[1]): r[3:] for r in rows[1:]}
         self.assertEqual(len(got), len(rows) - 1)
         people = {(n, n): n for n in self.expected if n != 'group'}
         people.update({(u['name'], u['email']): 'group' for u in self.group})

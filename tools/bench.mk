@@ -60,7 +60,7 @@ BENCH_RECORD := -DLRT_BENCH_CXX='"$(BENCH_CXX)"' \
 
 # The chapter that writes the benchmark, if CHAPTERS holds it (a kit of
 # earlier chapters does not).
-BENCH_CHAPTER := $(shell grep -l '^<<bench/bvhbench.cpp>>=' $(CHAPTERS) /dev/null)
+BENCH_CHAPTER := $(shell grep -l '^<<bench/bvhbench.cpp>>=' $(filter %.md,$(CHAPTERS)) /dev/null)
 
 .PHONY: bench bench-build bench-compiler
 bench-compiler:

@@ -4,6 +4,7 @@
     tools/exercise_kits.py build --out DIR [--src DIR] [--no-book] [NN ...]
     tools/exercise_kits.py leaks --out DIR [--src DIR]
     tools/exercise_kits.py validate --out DIR [--edition student|solution]
+    tools/exercise_kits.py try --out DIR [--src DIR] [MAKE_ARG ...]
 
 build: DIR/student/ and DIR/solution/ (and DIR/lrt-student.tar.gz,
 DIR/lrt-solution.tar.gz) for the exercises of chapters NN (all chapters when
@@ -30,6 +31,13 @@ chosen chapter N, the code as of N built as grading builds it (the student's
 chapter N, the reference text of the chapters before it) must fail every test
 of chapter N's exercises, with at least one failure naming the exercise (as
 the stubs do), and pass chapter N's other tests.
+
+try: the kits as their readers use them. The student kit's own `make test`
+(with MAKE_ARGs, e.g. UPTO=last) may fail a test only because of the chosen
+exercises' stubs (their tests, or a later chapter's test whose failure names
+one), and skip a test only at the stub of a later assignment's exercise; each
+chosen exercise fails some test. The solution kit's chapters and tests must
+be the source's, which the source's own `make test` runs.
 
 --src is where chapters/, tests/, book.md, figures/ and data/ come from (the
 repository by default); the Makefile, tools/ and tests/tools/ always come from
@@ -82,6 +90,15 @@ def shown(path):
 
 def fail(message):
     sys.exit('exercises: ' + message)
+
+
+def stop_on(problems, message):
+    """Prints the problems, if any, and fails with message (which takes
+    their count, %d)."""
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    if problems:
+        fail(message % len(problems))
 
 
 def clean_env():
@@ -347,12 +364,7 @@ def build(args):
     later = sorted(choice.stubbed - set(choice.points))
     if later:
         print('  stubs also for the exercises of later assignments: %s' % ' '.join(later))
-    problems = leaks(out, src)
-    if problems:
-        for problem in problems:
-            print(problem, file=sys.stderr)
-        fail('the student kit leaks solutions or hidden tests (%d findings)'
-             % len(problems))
+    stop_on(leaks(out, src), 'the student kit leaks solutions or hidden tests (%d findings)')
     print('exercises: leak check passed: no solution line or hidden test name in the '
           'student kit, its tangle, its book, its web pages or its tarball')
 
@@ -532,10 +544,7 @@ def leaks(out, src, edition='student'):
 
 def leaks_command(args):
     problems = leaks(os.path.abspath(args.out), os.path.abspath(args.src), args.edition)
-    for problem in problems:
-        print(problem, file=sys.stderr)
-    if problems:
-        fail('%d leak(s) in the %s kit' % (len(problems), args.edition))
+    stop_on(problems, '%%d leak(s) in the %s kit' % args.edition)
     print('exercises: no leaks in the %s kit' % args.edition)
 
 
@@ -834,13 +843,121 @@ def validate(args):
             edition + (' edition' if edition in EDITIONS else ''), len(runs), passed,
             len(runs) - passed, note, time.time() - started))
         errors += e
-    for error in errors:
-        print(error, file=sys.stderr)
-    if errors:
-        fail('validation failed (%d problems)' % len(errors))
+    stop_on(errors, 'validation failed (%d problems)')
     print('validate: the solutions pass every test; the stubs fail every test of their '
           'exercise (%d exercises) and only those, in the kits and in grading, one '
           'exercise stubbed at a time' % len(manifest['exercises']))
+
+
+# ---------------------------------------------------------------------------
+# Trying the kits as their readers do
+
+def result_lines(output, kind):
+    """runtests.py's 'FAILED: LABEL NAME' or 'SKIPPED: LABEL NAME: REASON'
+    lines, as (label, name, reason)."""
+    found = []
+    for line in output.splitlines():
+        if line.startswith(kind + ': '):
+            label, _, rest = line[len(kind) + 2:].partition(' ')
+            name, _, reason = rest.partition(': ')
+            found.append((label, name, reason))
+    return found
+
+
+def kit_binary(kit, label):
+    """The test binary that `make test` labelled asofNN/chMM (tools/asof.mk)."""
+    asof = label.split('/')[0]
+    chapters = sorted(glob.glob(os.path.join(kit, 'chapters', '[0-9][0-9]-*.md')))
+    listing = make(kit, ['-s', '-f', 'tools/asof.mk', 'ASOF=' + asof[len('asof'):],
+                         'CHAPTERS=' + ' '.join(os.path.relpath(c, kit) for c in chapters),
+                         'BUILD=build', 'list-tests']).stdout
+    for item in listing.split():
+        if item.startswith(label + '='):
+            return os.path.join(kit, item.split('=', 1)[1])
+    return None
+
+
+def same_as_source(out, src, manifest):
+    """Problems if the solution kit's chapters or tests differ from the
+    source's: then the source's own `make test` and `make validate-exercises`
+    do not speak for them."""
+    kit = os.path.join(out, 'solution')
+    problems = []
+    for top in manifest['chapters'] + ['tests']:
+        for path in ([os.path.join(kit, top)] if top.endswith('.md') else
+                     [os.path.join(d, f) for d, _, fs in os.walk(os.path.join(kit, top))
+                      for f in fs]):
+            rel = os.path.relpath(path, kit)
+            origin = os.path.join(ROOT if rel.startswith(('tests/tools/', 'tests/calls/'))
+                                  else src, rel)
+            if not os.path.isfile(origin) or read_bytes(origin) != read_bytes(path):
+                problems.append('solution: %s is not the source\'s %s' % (rel, origin))
+    return problems
+
+
+def try_student(out, manifest, make_args):
+    """Runs `make test` with make_args in the student kit, as its reader
+    would, and returns (summary, problems). A test may fail only because of
+    the assignment's own stubs: a test of a chosen exercise, or a test whose
+    failure names a chosen exercise's stub (a later chapter's test that uses
+    that code); it may be skipped only by the stub of a later assignment's
+    exercise (tests/calls/core.h); and each chosen exercise whose chapter's
+    tests ran fails some test."""
+    kit = os.path.join(out, 'student')
+    proc = make(kit, ['test'] + make_args)
+    output = proc.stdout + proc.stderr
+    summary = ([l for l in proc.stdout.splitlines() if l.startswith('tests: ')] or
+               ['no summary'])[-1]
+    failed, skipped = result_lines(proc.stdout, 'FAILED'), result_lines(proc.stdout, 'SKIPPED')
+    problems = []
+    if not summary.startswith('tests: ') or summary.startswith('tests: 0 passed'):
+        problems.append('student: make test %s ran no tests:\n%s' % (
+            ' '.join(make_args), output[-3000:]))
+    chosen = {e['id'] for e in manifest['exercises']}
+    later = set(manifest.get('unreleased', []))
+    for label, name, reason in skipped:
+        match = re.match(r'Exercise (\S+) comes with a later assignment: ', reason)
+        if not match or match.group(1) not in later:
+            problems.append('student: %s %s is skipped (%s): only a later assignment\'s '
+                            'stub may skip a test' % (label, name, reason))
+    failed_exercises = set()
+    for label, name, _ in failed:
+        exercise_id = exercises.Book.suite_exercise(name.split('.')[0])
+        if exercise_id in chosen:
+            failed_exercises.add(exercise_id)
+            continue
+        # Why did it fail? Its binary, run again for this test alone, says.
+        binary = kit_binary(kit, label) if re.match(r'^asof\d+/ch\d+$', label) else None
+        suites, text = gtest_json(binary, name) if binary else (None, output[-3000:])
+        if suites is not None:
+            text = failure_text(suites)
+        names = set(re.findall(r'Exercise (\S+) is not done yet', text))
+        if not names or not names <= chosen:
+            problems.append('student: %s %s fails, and not only because of this '
+                            'assignment\'s stubs:\n    %s' % (
+                                label, name, text.strip().replace('\n', '\n    ')[:1500]))
+    ran = set(re.findall(r'^asof\d+/ch(\d+) ', proc.stdout, re.M))
+    for e in manifest['exercises']:
+        if e['chapter'] in ran and e['id'] not in failed_exercises:
+            problems.append('student: no test of %s fails: its stub is not reached'
+                            % e['id'])
+    return summary, problems
+
+
+def try_command(args):
+    out = os.path.abspath(args.out)
+    with open(os.path.join(out, 'solution', 'exercises.json'), encoding='utf-8') as f:
+        manifest = json.load(f)
+    started = time.time()
+    problems = same_as_source(out, os.path.abspath(args.src), manifest)
+    summary, p = try_student(out, manifest, args.make_args)
+    problems += p
+    print('try: student kit: make test %s: %s (%.0f s)' % (
+        ' '.join(args.make_args), summary, time.time() - started))
+    stop_on(problems, 'the kits do not work as their READMEs say (%d problems)')
+    print('try: in the student kit only the assignment\'s stubs fail tests, and only '
+          'later assignments\' stubs skip them; the solution kit\'s chapters and tests '
+          'are the source\'s, whose tests make test runs')
 
 
 def main(argv=None):
@@ -858,12 +975,18 @@ def main(argv=None):
     p.add_argument('--out', required=True)
     p.add_argument('--src', default=ROOT)
     p.add_argument('--edition', default='student', choices=EDITIONS)
+    p = sub.add_parser('try')
+    p.add_argument('--out', required=True)
+    p.add_argument('--src', default=ROOT)
+    p.add_argument('make_args', nargs='*', metavar='MAKE_ARG',
+                   help='for the kits\' make test, e.g. UPTO=last')
     p = sub.add_parser('validate')
     p.add_argument('--out', required=True)
     p.add_argument('--edition', action='append', choices=VALIDATIONS)
     p.add_argument('--jobs', type=int, default=os.cpu_count() or 1)
     args = parser.parse_args(argv)
-    {'build': build, 'leaks': leaks_command, 'validate': validate}[args.command](args)
+    {'build': build, 'leaks': leaks_command, 'validate': validate,
+     'try': try_command}[args.command](args)
 
 
 if __name__ == '__main__':

@@ -291,6 +291,16 @@ class StudentEditionTest(unittest.TestCase):
         self.assertEqual(text.split('<<Add up the squares of v>>=')[0],
                          original.split('<<Add up the squares of v>>=')[0])
 
+    def test_later_stub_message_is_the_one_make_test_skips_on(self):
+        # tests/calls/core.h recognizes a later assignment's stub by its
+        # words; the two must agree.
+        book = exercises.load([os.path.join(FIXTURE, CH1)], root=FIXTURE, tests=False)
+        message = exercises.stub_message(book.exercises[1], 'Clamp v to the range', True)
+        self.assertEqual(message, 'Exercise ex-1.2 comes with a later assignment: leave '
+                         '<Clamp v to the range> (Section 1.2, Clamping) as it is for now')
+        core = read(os.path.join(ROOT, 'tests', 'calls', 'core.h'))
+        self.assertIn('" %s: "' % exercises.LATER_STUB, core)
+
     def test_stub_lines_fit_the_column(self):
         lines = exercises.throw_lines(' ' * 12, 'Exercise ex-6.12 is not done yet: write <'
                                       + 'A very long fragment name ' * 5 + '"quoted" \\ '
@@ -661,6 +671,29 @@ class PlanKitTest(unittest.TestCase):
         self.assertNotEqual(ch2.returncode, 0)
         self.assertIn('FAILED: asof02/ch02 Ex2_1_Mean.SmallVectors', ch2.stdout)
         self.assertNotIn('SKIPPED', ch2.stdout)
+        # `try` accepts both: the failures are this assignment's, the skips
+        # a later one's.
+        tried = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'try', '--src',
+                     v.dir, '--out', out, 'CH=02'])
+        self.assertEqual(tried.returncode, 0, tried.stdout + tried.stderr)
+        self.assertIn('try: student kit: make test CH=02: tests: 2 passed, 1 failed',
+                      tried.stdout)
+        # A test of chapter 2 that fails for another reason, and one that
+        # reaches ex-2.1's stub: only the first is a problem.
+        test = os.path.join(student, 'tests', 'ch02', 'test_means.cpp')
+        write(test, read(test) + '\nTEST(Mean, Planted) { EXPECT_EQ(Twice(2), 5); }\n'
+              'TEST(Mean, UsesTheMean) { EXPECT_EQ(Mean({2}), 2); }\n')
+        tried = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'try', '--src',
+                     v.dir, '--out', out, 'CH=02'])
+        self.assertNotEqual(tried.returncode, 0)
+        self.assertIn('student: asof02/ch02 Mean.Planted fails, and not only because of '
+                      'this assignment\'s stubs', tried.stderr)
+        self.assertNotIn('UsesTheMean fails', tried.stderr)
+        # The solution kit must be the source's.
+        write(os.path.join(out, 'solution', 'tests', 'ch01', 'test_sums.cpp'), '\n')
+        tried = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'try', '--src',
+                     v.dir, '--out', out, 'CH=01'])
+        self.assertIn('solution: tests/ch01/test_sums.cpp is not the source\'s', tried.stderr)
 
 
 class ValidationTest(unittest.TestCase):

@@ -1,18 +1,32 @@
 #!/usr/bin/env bash
-# Gradescope autograder setup: Gradescope runs this as root in its Ubuntu/Debian
-# image, with this repository unpacked in /autograder/source (zip the repository
-# with gradescope/setup.sh and gradescope/run_autograder at the top, for example
-# `cp gradescope/* . && zip -r autograder.zip .`, or keep them here: both work).
-# tools/deps.sh grade installs the Debian packages grading needs (the
-# compiler, noweb, GoogleTest, bubblewrap, ccache), not those of the book.
+# Gradescope's autograder setup: Gradescope runs this as root in its
+# Ubuntu/Debian image, with the zip that `make gradescope` writes unpacked in
+# /autograder/source (this script at its top). It installs the Debian packages
+# grading needs (tools/deps.sh grade: the compiler, noweb, GoogleTest,
+# bubblewrap, ccache; nothing of the book's), then warms the build cache by
+# grading the book's own chapters with the autograder's flags (grade_flags):
+# the judges are built, and a student whose code for an exercise is the
+# book's is graded without a compile. The book's chapters must score every
+# point, or the autograder is broken and setup fails.
 set -euo pipefail
 cd "$(dirname "$(readlink -f "$0")")"
 [ -f tools/deps.sh ] || cd ..
-apt-get update
 tools/deps.sh grade
-# Warm the build cache with the reference solution, so that a student whose
-# chapter compiles to the same code is graded without a compile.
-mkdir -p /tmp/lrt-warm/chapters
-cp chapters/[0-9][0-9]-*.md /tmp/lrt-warm/chapters/
-python3 tools/grade.py --out /tmp/lrt-warm-out --quiet /tmp/lrt-warm || true
-rm -rf /tmp/lrt-warm /tmp/lrt-warm-out
+warm=$(mktemp -d)
+trap 'rm -rf "$warm"' EXIT
+mkdir "$warm/book"
+cp -r chapters "$warm/book/"
+flags=()
+[ -f grade_flags ] && flags+=(@grade_flags)
+# shellcheck disable=SC2206
+flags+=(${GRADE_FLAGS:-})
+python3 tools/grade.py --out "$warm/out" --quiet "${flags[@]}" "$warm/book"
+python3 - "$warm/out/results.json" <<'PY'
+import json, sys
+data = json.load(open(sys.argv[1]))
+if abs(data['score'] - data['max_score']) > 1e-6:
+    sys.exit('setup: the book\'s own chapters score %g of %g: the autograder is broken'
+             % (data['score'], data['max_score']))
+print('setup: the book\'s chapters score %g of %g; build cache warm'
+      % (data['score'], data['max_score']))
+PY

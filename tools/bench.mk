@@ -58,6 +58,10 @@ BENCH_ASOF := $(ASOF) ASOF=$(LAST) BUILD=$(BENCH_BUILD) SANITIZE= \
 BENCH_RECORD := -DLRT_BENCH_CXX='"$(BENCH_CXX)"' \
                 -DLRT_BENCH_CXXFLAGS='"$(strip $(BENCH_CXXFLAGS))"'
 
+# The chapter that writes the benchmark, if CHAPTERS holds it (a kit of
+# earlier chapters does not).
+BENCH_CHAPTER := $(shell grep -l '^<<bench/bvhbench.cpp>>=' $(filter %.md,$(CHAPTERS)) /dev/null)
+
 .PHONY: bench bench-build bench-compiler
 bench-compiler:
 	@if ! command -v $(firstword $(BENCH_CXX)) > /dev/null; then \
@@ -66,7 +70,14 @@ bench-compiler:
 
 # make (the build command) compiles the benchmark too, in the default
 # configuration, so that it cannot rot between measurements; only make bench
-# runs it.
+# runs it. Without the benchmark's chapter there is nothing to compile, and
+# make bench says so.
+ifeq ($(BENCH_CHAPTER),)
+bench-build:
+	@echo "bench: no chapter of this book writes bench/bvhbench.cpp: nothing to build"
+bench: bench-build
+	@echo "make bench: the benchmark is Appendix A's; this book ends before it" >&2; exit 1
+else
 bench-build: $(LINTED) bench-compiler
 	$(BENCH_ASOF) tangle
 	$(BENCH_ASOF) -j$(JOBS) lib
@@ -81,3 +92,4 @@ bench: bench-build
 	@if [ ! -f $(BENCH_DATA)/manifest.json ] && [ -f $(BENCH_GENERATOR) ]; \
 	then python3 $(BENCH_GENERATOR) --out $(BENCH_DATA); fi
 	$(BENCH_BIN) --data $(BENCH_DATA) --json $(BENCH_JSON) $(BENCH_ARGS)
+endif

@@ -4,6 +4,7 @@
     tools/exercise_kits.py build --out DIR [--src DIR] [--no-book] [NN ...]
     tools/exercise_kits.py leaks --out DIR [--src DIR]
     tools/exercise_kits.py validate --out DIR [--edition student|solution]
+    tools/exercise_kits.py try --out DIR [--src DIR] [MAKE_ARG ...]
 
 build: DIR/student/ and DIR/solution/ (and DIR/lrt-student.tar.gz,
 DIR/lrt-solution.tar.gz) for the exercises of chapters NN (all chapters when
@@ -31,6 +32,13 @@ chapter N, the reference text of the chapters before it) must fail every test
 of chapter N's exercises, with at least one failure naming the exercise (as
 the stubs do), and pass chapter N's other tests.
 
+try: the kits as their readers use them. The student kit's own `make test`
+(with MAKE_ARGs, e.g. UPTO=last) may fail a test only because of the chosen
+exercises' stubs (their tests, or a later chapter's test whose failure names
+one), and skip a test only at the stub of a later assignment's exercise; each
+chosen exercise fails some test. The solution kit's chapters and tests must
+be the source's, which the source's own `make test` runs.
+
 --src is where chapters/, tests/, book.md, figures/ and data/ come from (the
 repository by default); the Makefile, tools/ and tests/tools/ always come from
 the repository that holds this script.
@@ -51,6 +59,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
+import course  # noqa: E402
 import exercises  # noqa: E402
 
 EDITIONS = ('solution', 'student')
@@ -58,12 +67,13 @@ EDITIONS = ('solution', 'student')
 VALIDATIONS = EDITIONS + ('grading',)
 # The toolchain's own tests go into every kit (the kit's `make test` runs
 # them) except the exercise machinery's, whose fixtures hold solutions, and
-# the grader's, which grade the repository's own solutions with its hidden
-# tests: in a student kit, whose chapters hold stubs, they could only fail.
-# The web edition's are left out too: they open pages of chapter 5, which a
-# kit of the first chapters lacks, and a student's machine may have no browser.
+# the grader's and the autograder's, which grade the repository's own
+# solutions with its hidden tests: in a student kit, whose chapters hold
+# stubs, they could only fail. The web edition's are left out too: they open
+# pages of chapter 5, which a kit of the first chapters lacks, and a
+# student's machine may have no browser.
 TOOL_TESTS_LEFT_OUT = ('exercises', 'test_exercises.py', 'test_grade.py', 'attacks.py',
-                       'test_html.py', '__pycache__')
+                       'test_gradescope.py', 'test_html.py', '__pycache__')
 # Make variables of the calling make that must not leak into a kit's make.
 MAKE_ENV_DROP = ('CHAPTERS', 'BUILD', 'MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'MAKEOVERRIDES',
                  'CH', 'UPTO', 'ONLY', 'ASOF', 'HIDDEN', 'GTEST_FILTER')
@@ -80,6 +90,15 @@ def shown(path):
 
 def fail(message):
     sys.exit('exercises: ' + message)
+
+
+def stop_on(problems, message):
+    """Prints the problems, if any, and fails with message (which takes
+    their count, %d)."""
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    if problems:
+        fail(message % len(problems))
 
 
 def clean_env():
@@ -140,22 +159,82 @@ def copy_file(source, target):
         shutil.copy2(source, target)
 
 
-def exercise_table(chosen):
+class Choice:
+    """What a pair of kits is for: the chapters given by number (every
+    exercise of them), or one assignment of a course plan (docs/course.md).
+
+    numbers: the chapters whose exercises are chosen (the kit holds chapters
+    1 to the last of them); chosen: those exercises (Exercise objects);
+    points: {id: points}, the plan's where it says; stubbed: the exercises
+    that are stubs in the student kit: the chosen ones, and with a plan also
+    those of the assignments released later (earlier chapters' included), so
+    that no solution is handed out before its assignment."""
+
+    def __init__(self, book, chapters=None, plan=None, assignment=None):
+        self.plan, self.assignment = plan, None
+        if plan is None:
+            if assignment:
+                fail('ASSIGNMENT needs PLAN (a course plan, docs/course.md)')
+            self.numbers = selection(book, chapters)
+            self.chosen = [e for e in book.exercises if e.chapter in self.numbers]
+            self.points = {e.id: e.points for e in self.chosen}
+            self.stubbed = {e.id for e in self.chosen}
+            self.later = set()
+            return
+        if chapters:
+            fail('give CHAPTERS or PLAN, not both')
+        if not assignment:
+            fail('PLAN needs ASSIGNMENT: the kits are those of one assignment')
+        try:
+            loaded = course.load(plan, {e.id: e.points for e in book.exercises})
+            self.assignment = loaded.assignment(assignment)
+        except course.PlanError as e:
+            fail(str(e))
+        ids = self.assignment.exercises
+        self.chosen = [e for e in book.exercises if e.id in ids]
+        self.numbers = sorted({e.chapter for e in self.chosen})
+        self.points = dict(self.assignment.points)
+        self.later = set(loaded.unreleased(assignment)) - set(ids)
+        self.stubbed = set(ids) | self.later
+
+    def manifest(self):
+        if self.assignment is None:
+            return {}
+        a = self.assignment.as_dict()
+        a['plan'] = os.path.basename(self.plan)
+        return {'assignment': a, 'unreleased': sorted(self.later)}
+
+
+def exercise_table(chosen, points):
     if not chosen:
         return 'This set has no exercises.'
     rows = ['| exercise | points | title | chapter file | section | tests |',
             '|---|---|---|---|---|---|']
     for e in chosen:
         section = e.section.label() if e.section.number else e.section.title
-        rows.append('| %s | %d | %s | `%s` | %s | `%s*` |' % (
-            e.number, e.points, e.title, e.path, section, e.suite_prefix))
+        rows.append('| %s | %g | %s | `%s` | %s | `%s*` |' % (
+            e.number, points[e.id], e.title, e.path, section, e.suite_prefix))
     rows.append('')
-    rows.append('%d exercises, %d points in all.' % (len(chosen),
-                                                     sum(e.points for e in chosen)))
+    rows.append('%d exercises, %g points in all.' % (len(chosen),
+                                                     sum(points[e.id] for e in chosen)))
     return '\n'.join(rows)
 
 
-def readme(edition, book, kit_chapters, chosen_numbers, chosen):
+def later_note(book, choice):
+    """For the kit of an assignment of a plan: the stubs of exercises that
+    later assignments set, which are not this one's to write."""
+    last = max(choice.numbers)
+    later = [e for e in book.exercises if e.id in choice.later and e.chapter <= last]
+    if not later:
+        return ''
+    return ('\n\nThe exercises %s are stubs too: a later assignment sets them, and '
+            'their stubs say so. `make test` skips every test that reaches one of '
+            'them, naming the exercise, instead of failing it; leave them for now.'
+            % ', '.join(e.id for e in later))
+
+
+def readme(edition, book, kit_chapters, choice):
+    chosen_numbers, chosen = choice.numbers, choice.chosen
     with open(os.path.join(HERE, 'kit', 'README.%s.md' % edition), encoding='utf-8') as f:
         text = f.read()
     example = chosen[0] if chosen else None
@@ -166,7 +245,8 @@ def readme(edition, book, kit_chapters, chosen_numbers, chosen):
                               if not chosen or any(e.chapter == n for e in chosen)),
         'SELECTED_FILES': ', '.join('`%s`' % c.path for c in kit_chapters
                                     if c.number in chosen_numbers),
-        'EXERCISES': exercise_table(chosen),
+        'EXERCISES': exercise_table(chosen, choice.points),
+        'LATER': later_note(book, choice),
         'EXAMPLE_ID': example.id if example else 'ex-N.K',
         'EXAMPLE_CH': example.chapter if example else 'NN',
         'EXAMPLE_N': str(int(example.chapter)) if example else 'N',
@@ -179,14 +259,14 @@ def readme(edition, book, kit_chapters, chosen_numbers, chosen):
     return text
 
 
-def write_kit(edition, src, out, book, chosen_numbers, build_book):
+def write_kit(edition, src, out, book, choice, build_book):
     kit = os.path.join(out, edition)
     if os.path.exists(kit):
         shutil.rmtree(kit)
     os.makedirs(kit)
+    chosen_numbers, chosen = choice.numbers, choice.chosen
     last = max(chosen_numbers)
     kit_chapters = [c for c in book.chapters if c.number <= last]
-    chosen = [e for e in book.exercises if e.chapter in chosen_numbers]
 
     copy_file(os.path.join(ROOT, 'Makefile'), os.path.join(kit, 'Makefile'))
     copy_tree(os.path.join(ROOT, 'tools'), os.path.join(kit, 'tools'))
@@ -201,8 +281,9 @@ def write_kit(edition, src, out, book, chosen_numbers, build_book):
     for chapter in kit_chapters:
         target = os.path.join(kit, chapter.path)
         os.makedirs(os.path.dirname(target), exist_ok=True)
-        if edition == 'student' and chapter.number in chosen_numbers:
-            lines = exercises.student_edition(chapter)
+        stubbed = [e for e in chapter.exercises if e.id in choice.stubbed]
+        if edition == 'student' and stubbed:
+            lines = exercises.student_edition(chapter, only=stubbed, later=choice.later)
         else:
             lines = chapter.lines
         with open(target, 'w', encoding='utf-8') as f:
@@ -213,23 +294,28 @@ def write_kit(edition, src, out, book, chosen_numbers, build_book):
             copy_tree(os.path.join(src, 'tests', 'hidden', 'ch' + chapter.number),
                       os.path.join(kit, 'tests', 'hidden', 'ch' + chapter.number))
     with open(os.path.join(kit, 'README.md'), 'w', encoding='utf-8') as f:
-        f.write(readme(edition, book, kit_chapters, chosen_numbers, chosen))
+        f.write(readme(edition, book, kit_chapters, choice))
+    listed = [e.as_dict(hidden=edition == 'solution') for e in chosen]
+    for e in listed:
+        e['points'] = choice.points[e['id']]
     manifest = {
         'edition': edition,
         'chapters': [c.path for c in kit_chapters],
         'chosen_chapters': chosen_numbers,
-        'exercises': [e.as_dict(hidden=edition == 'solution') for e in chosen],
-        'points': sum(e.points for e in chosen),
+        'exercises': listed,
+        'points': sum(choice.points.values()),
     }
+    manifest.update(choice.manifest())
     with open(os.path.join(kit, 'exercises.json'), 'w', encoding='utf-8') as f:
         json.dump(manifest, f, indent=2)
         f.write('\n')
 
-    # The kit builds its own tangle and book, with its own Makefile: this is
-    # also the first check that the kit works on its own. The two kits share
-    # the web edition's compiled drawings.
-    proc = make(kit, ['tangle'] + (['book', 'html', 'HTML_CACHE=' +
-                                    os.path.join(out, 'html-cache')] if build_book else []))
+    # The kit is built with its own Makefile, as its README tells the reader
+    # to (`make`: the tangle, the library, the book; and the web edition), so
+    # a kit whose `make` fails is never handed out. The two kits share the
+    # web edition's compiled drawings.
+    proc = make(kit, ['all', 'html', 'HTML_CACHE=' + os.path.join(out, 'html-cache')]
+                if build_book else ['tangle'])
     if proc.returncode != 0:
         fail('%s kit: make failed in %s:\n%s%s' % (edition, kit, proc.stdout[-3000:],
                                                    proc.stderr[-3000:]))
@@ -237,6 +323,8 @@ def write_kit(edition, src, out, book, chosen_numbers, build_book):
         shutil.copy2(os.path.join(kit, 'build', 'book.pdf'), os.path.join(kit, 'book.pdf'))
         shutil.copytree(os.path.join(kit, 'build', 'html'), os.path.join(kit, 'html'))
     shutil.rmtree(os.path.join(kit, 'build'), ignore_errors=True)
+    if os.path.exists(os.path.join(kit, 'compile_commands.json')):
+        os.remove(os.path.join(kit, 'compile_commands.json'))
     return kit, chosen
 
 
@@ -256,25 +344,27 @@ def tarball(out, edition):
 def build(args):
     src = os.path.abspath(args.src)
     book = source_book(src)
-    chosen_numbers = selection(book, args.chapters)
+    choice = Choice(book, args.chapters, args.plan and os.path.abspath(args.plan),
+                    args.assignment)
+    chosen_numbers = choice.numbers
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
     for edition in EDITIONS:
         started = time.time()
-        kit, chosen = write_kit(edition, src, out, book, chosen_numbers, not args.no_book)
+        kit, chosen = write_kit(edition, src, out, book, choice, not args.no_book)
         path = tarball(out, edition)
         print('exercises: %s kit in %s, %s (%.0f s)' % (edition, shown(kit), shown(path),
                                                          time.time() - started))
+    if choice.assignment:
+        print('  assignment %s of %s' % (choice.assignment.name, shown(choice.plan)))
     for e in chosen:
-        print('  %-8s %2d points  %s' % (e.id, e.points, e.title))
-    print('  %d exercises, %d points, chapters %s' % (
-        len(chosen), sum(e.points for e in chosen), ' '.join(chosen_numbers)))
-    problems = leaks(out, src)
-    if problems:
-        for problem in problems:
-            print(problem, file=sys.stderr)
-        fail('the student kit leaks solutions or hidden tests (%d findings)'
-             % len(problems))
+        print('  %-8s %2g points  %s' % (e.id, choice.points[e.id], e.title))
+    print('  %d exercises, %g points, chapters %s' % (
+        len(chosen), sum(choice.points.values()), ' '.join(chosen_numbers)))
+    later = sorted(choice.stubbed - set(choice.points))
+    if later:
+        print('  stubs also for the exercises of later assignments: %s' % ' '.join(later))
+    stop_on(leaks(out, src), 'the student kit leaks solutions or hidden tests (%d findings)')
     print('exercises: leak check passed: no solution line or hidden test name in the '
           'student kit, its tangle, its book, its web pages or its tarball')
 
@@ -356,7 +446,8 @@ def leak_targets(src, manifest):
     that appear nowhere else in the source, and for every pair of consecutive
     solution lines; and the hidden test names."""
     book = source_book(src)
-    chosen = {e['id'] for e in manifest['exercises']}
+    # The chosen exercises, and with a plan those of later assignments.
+    chosen = {e['id'] for e in manifest['exercises']} | set(manifest.get('unreleased', []))
     kit_paths = set(manifest['chapters'])
     allowed = []
     solution = []    # (compact text, exercise, chapter path, line, text)
@@ -453,10 +544,7 @@ def leaks(out, src, edition='student'):
 
 def leaks_command(args):
     problems = leaks(os.path.abspath(args.out), os.path.abspath(args.src), args.edition)
-    for problem in problems:
-        print(problem, file=sys.stderr)
-    if problems:
-        fail('%d leak(s) in the %s kit' % (len(problems), args.edition))
+    stop_on(problems, '%%d leak(s) in the %s kit' % args.edition)
     print('exercises: no leaks in the %s kit' % args.edition)
 
 
@@ -634,6 +722,8 @@ def validate_student(out, manifest, jobs):
     solution = os.path.join(out, 'solution')
     chapters = manifest['chapters']
     chosen = {e['id']: e for e in manifest['exercises']}
+    # A plan's later assignments: stubs too, whose tests must fail as well.
+    stubbed = dict(chosen, **{e: None for e in manifest.get('unreleased', [])})
     runs, errors = [], []
     hidden = os.path.join(solution, 'tests', 'hidden')
     # While the student's chapters are the solution's, so is the code: the
@@ -661,7 +751,7 @@ def validate_student(out, manifest, jobs):
             runs += r
             errors += ['student: ' + x for x in e]
         same_so_far = same_so_far and same
-    exercise_runs = judge('student', runs, chosen, errors)
+    exercise_runs = judge('student', runs, stubbed, errors)
     if not errors:
         check_expected('student', runs, manifest['exercises'], errors)
     return runs, errors, ', %d of them exercise tests that must fail' % exercise_runs
@@ -753,13 +843,121 @@ def validate(args):
             edition + (' edition' if edition in EDITIONS else ''), len(runs), passed,
             len(runs) - passed, note, time.time() - started))
         errors += e
-    for error in errors:
-        print(error, file=sys.stderr)
-    if errors:
-        fail('validation failed (%d problems)' % len(errors))
+    stop_on(errors, 'validation failed (%d problems)')
     print('validate: the solutions pass every test; the stubs fail every test of their '
           'exercise (%d exercises) and only those, in the kits and in grading, one '
           'exercise stubbed at a time' % len(manifest['exercises']))
+
+
+# ---------------------------------------------------------------------------
+# Trying the kits as their readers do
+
+def result_lines(output, kind):
+    """runtests.py's 'FAILED: LABEL NAME' or 'SKIPPED: LABEL NAME: REASON'
+    lines, as (label, name, reason)."""
+    found = []
+    for line in output.splitlines():
+        if line.startswith(kind + ': '):
+            label, _, rest = line[len(kind) + 2:].partition(' ')
+            name, _, reason = rest.partition(': ')
+            found.append((label, name, reason))
+    return found
+
+
+def kit_binary(kit, label):
+    """The test binary that `make test` labelled asofNN/chMM (tools/asof.mk)."""
+    asof = label.split('/')[0]
+    chapters = sorted(glob.glob(os.path.join(kit, 'chapters', '[0-9][0-9]-*.md')))
+    listing = make(kit, ['-s', '-f', 'tools/asof.mk', 'ASOF=' + asof[len('asof'):],
+                         'CHAPTERS=' + ' '.join(os.path.relpath(c, kit) for c in chapters),
+                         'BUILD=build', 'list-tests']).stdout
+    for item in listing.split():
+        if item.startswith(label + '='):
+            return os.path.join(kit, item.split('=', 1)[1])
+    return None
+
+
+def same_as_source(out, src, manifest):
+    """Problems if the solution kit's chapters or tests differ from the
+    source's: then the source's own `make test` and `make validate-exercises`
+    do not speak for them."""
+    kit = os.path.join(out, 'solution')
+    problems = []
+    for top in manifest['chapters'] + ['tests']:
+        for path in ([os.path.join(kit, top)] if top.endswith('.md') else
+                     [os.path.join(d, f) for d, _, fs in os.walk(os.path.join(kit, top))
+                      for f in fs]):
+            rel = os.path.relpath(path, kit)
+            origin = os.path.join(ROOT if rel.startswith(('tests/tools/', 'tests/calls/'))
+                                  else src, rel)
+            if not os.path.isfile(origin) or read_bytes(origin) != read_bytes(path):
+                problems.append('solution: %s is not the source\'s %s' % (rel, origin))
+    return problems
+
+
+def try_student(out, manifest, make_args):
+    """Runs `make test` with make_args in the student kit, as its reader
+    would, and returns (summary, problems). A test may fail only because of
+    the assignment's own stubs: a test of a chosen exercise, or a test whose
+    failure names a chosen exercise's stub (a later chapter's test that uses
+    that code); it may be skipped only by the stub of a later assignment's
+    exercise (tests/calls/core.h); and each chosen exercise whose chapter's
+    tests ran fails some test."""
+    kit = os.path.join(out, 'student')
+    proc = make(kit, ['test'] + make_args)
+    output = proc.stdout + proc.stderr
+    summary = ([l for l in proc.stdout.splitlines() if l.startswith('tests: ')] or
+               ['no summary'])[-1]
+    failed, skipped = result_lines(proc.stdout, 'FAILED'), result_lines(proc.stdout, 'SKIPPED')
+    problems = []
+    if not summary.startswith('tests: ') or summary.startswith('tests: 0 passed'):
+        problems.append('student: make test %s ran no tests:\n%s' % (
+            ' '.join(make_args), output[-3000:]))
+    chosen = {e['id'] for e in manifest['exercises']}
+    later = set(manifest.get('unreleased', []))
+    for label, name, reason in skipped:
+        match = re.match(r'Exercise (\S+) comes with a later assignment: ', reason)
+        if not match or match.group(1) not in later:
+            problems.append('student: %s %s is skipped (%s): only a later assignment\'s '
+                            'stub may skip a test' % (label, name, reason))
+    failed_exercises = set()
+    for label, name, _ in failed:
+        exercise_id = exercises.Book.suite_exercise(name.split('.')[0])
+        if exercise_id in chosen:
+            failed_exercises.add(exercise_id)
+            continue
+        # Why did it fail? Its binary, run again for this test alone, says.
+        binary = kit_binary(kit, label) if re.match(r'^asof\d+/ch\d+$', label) else None
+        suites, text = gtest_json(binary, name) if binary else (None, output[-3000:])
+        if suites is not None:
+            text = failure_text(suites)
+        names = set(re.findall(r'Exercise (\S+) is not done yet', text))
+        if not names or not names <= chosen:
+            problems.append('student: %s %s fails, and not only because of this '
+                            'assignment\'s stubs:\n    %s' % (
+                                label, name, text.strip().replace('\n', '\n    ')[:1500]))
+    ran = set(re.findall(r'^asof\d+/ch(\d+) ', proc.stdout, re.M))
+    for e in manifest['exercises']:
+        if e['chapter'] in ran and e['id'] not in failed_exercises:
+            problems.append('student: no test of %s fails: its stub is not reached'
+                            % e['id'])
+    return summary, problems
+
+
+def try_command(args):
+    out = os.path.abspath(args.out)
+    with open(os.path.join(out, 'solution', 'exercises.json'), encoding='utf-8') as f:
+        manifest = json.load(f)
+    started = time.time()
+    problems = same_as_source(out, os.path.abspath(args.src), manifest)
+    summary, p = try_student(out, manifest, args.make_args)
+    problems += p
+    print('try: student kit: make test %s: %s (%.0f s)' % (
+        ' '.join(args.make_args), summary, time.time() - started))
+    stop_on(problems, 'the kits do not work as their READMEs say (%d problems)')
+    print('try: in the student kit only the assignment\'s stubs fail tests, and only '
+          'later assignments\' stubs skip them; the solution kit\'s chapters and tests '
+          'are the source\'s, whose tests make test runs')
 
 
 def main(argv=None):
@@ -770,17 +968,25 @@ def main(argv=None):
     p.add_argument('--src', default=ROOT)
     p.add_argument('--no-book', action='store_true',
                    help='build neither book.pdf nor the web pages (html/)')
+    p.add_argument('--plan', help='a course plan (docs/course.md)')
+    p.add_argument('--assignment', help='with --plan: the kits of this assignment')
     p.add_argument('chapters', nargs='*')
     p = sub.add_parser('leaks')
     p.add_argument('--out', required=True)
     p.add_argument('--src', default=ROOT)
     p.add_argument('--edition', default='student', choices=EDITIONS)
+    p = sub.add_parser('try')
+    p.add_argument('--out', required=True)
+    p.add_argument('--src', default=ROOT)
+    p.add_argument('make_args', nargs='*', metavar='MAKE_ARG',
+                   help='for the kits\' make test, e.g. UPTO=last')
     p = sub.add_parser('validate')
     p.add_argument('--out', required=True)
     p.add_argument('--edition', action='append', choices=VALIDATIONS)
     p.add_argument('--jobs', type=int, default=os.cpu_count() or 1)
     args = parser.parse_args(argv)
-    {'build': build, 'leaks': leaks_command, 'validate': validate}[args.command](args)
+    {'build': build, 'leaks': leaks_command, 'validate': validate,
+     'try': try_command}[args.command](args)
 
 
 if __name__ == '__main__':

@@ -608,7 +608,14 @@ def c_string(text):
     return text.replace('\\', '\\\\').replace('"', '\\"').replace('<<', '< <')
 
 
-def stub_message(exercise, fragment):
+# How the stub of an exercise that a later assignment of a course plan sets
+# (docs/course.md) begins its message after the exercise's id. In `make test`,
+# a test that reaches such a stub is skipped, not failed: tests/calls/core.h
+# looks for these words.
+LATER_STUB = 'comes with a later assignment'
+
+
+def stub_message(exercise, fragment, later=False):
     section = exercise.section
     if section is None:
         where = exercise.section_id or 'see the book'
@@ -616,6 +623,9 @@ def stub_message(exercise, fragment):
         where = '%s, %s' % (section.label(), section.title)
     else:
         where = section.label()
+    if later:
+        return 'Exercise %s %s: leave <%s> (%s) as it is for now' % (
+            exercise.id, LATER_STUB, fragment, where)
     return 'Exercise %s is not done yet: write <%s> (%s)' % (exercise.id, fragment, where)
 
 
@@ -647,8 +657,8 @@ def throw_lines(indent, message):
     return lines
 
 
-def stub_code(region):
-    message = stub_message(region.exercise, region.chunk.name)
+def stub_code(region, later=False):
+    message = stub_message(region.exercise, region.chunk.name, later)
     if region.stub is None:
         return throw_lines(region.indent, message)
     out = []
@@ -658,16 +668,21 @@ def stub_code(region):
     return out
 
 
-def student_edition(chapter, only=None):
+def student_edition(chapter, only=None, later=()):
     """The chapter's lines with every solution (or, with `only`, those of one
-    exercise) replaced by its stub. The markers stay, so the student sees
-    where to write; stub blocks go."""
+    exercise, or of a set of exercises) replaced by its stub. The markers
+    stay, so the student sees where to write; stub blocks go. The stubs of the
+    exercises in `later` (ids: a course's later assignments set them) say so
+    in their message."""
     out = list(chapter.lines)
-    regions = [r for r in chapter.regions if only is None or r.exercise is only]
+    if only is not None and not isinstance(only, (set, frozenset, list, tuple)):
+        only = [only]
+    regions = [r for r in chapter.regions if only is None or r.exercise in only]
     for region in sorted(regions, key=lambda r: r.begin + r.chunk.line, reverse=True):
         if region.stub_begin is not None:
             del out[region.line(region.stub_begin) - 1:region.line(region.stub_end)]
-        out[region.line(region.begin):region.line(region.end) - 1] = stub_code(region)
+        out[region.line(region.begin):region.line(region.end) - 1] = \
+            stub_code(region, region.exercise.id in later)
     return out
 
 

@@ -9,6 +9,13 @@
 #                       every subdirectory or archive of dir is one student:
 #                       OUT/NAME/ each, and OUT/grades.csv (default build/grade/batch)
 #
+#   make gradescope [CHAPTERS="05" | PLAN=course.toml ASSIGNMENT=a1] [GRADE_FLAGS="..."]
+#                       build/gradescope/autograder.zip, Gradescope's autograder
+#                       (tools/gradescope.py): it grades what CHAPTERS or the
+#                       plan's assignment say, with GRADE_FLAGS
+#
+# PLAN=file ASSIGNMENT=name grades one assignment of a course plan
+# (docs/course.md): its exercises, with the plan's points.
 # CHAPTERS="02 05" grades the exercises of those chapters only, as make
 # exercises CHAPTERS=... chooses them (default: the chapters of a kit's
 # exercises.json, else every chapter with exercises).
@@ -16,20 +23,26 @@
 # GRADE_FLAGS passes options through: --time-limit S, --memory-limit MB,
 # --allow-changes-outside-exercises, --cxxflags ... (tools/grade.py --help).
 
-.PHONY: grade grade-batch
+.PHONY: grade grade-batch gradescope
 
 GRADE_CACHE = $(BUILD)/grade/cache
 # Here CHAPTERS may name chapter numbers; everywhere else it lists chapter files.
 GRADE_CHAPTERS = $(filter-out %.md,$(CHAPTERS))
+GRADE_PLAN = $(if $(PLAN),--plan $(PLAN))$(if $(ASSIGNMENT), --assignment $(ASSIGNMENT))
 
 grade: | deps
 	@if [ -z "$(SUBMISSION)" ]; then echo "make grade: give SUBMISSION=path" >&2; exit 2; fi
 	python3 tools/grade.py --cache $(GRADE_CACHE) $(if $(OUT),--out $(OUT)) \
-	    $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") $(GRADE_FLAGS) $(SUBMISSION)
+	    $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") $(GRADE_PLAN) $(GRADE_FLAGS) \
+	    $(SUBMISSION)
 
 grade-batch: | deps
 	@if [ -z "$(SUBMISSIONS)" ]; then echo "make grade-batch: give SUBMISSIONS=dir" >&2; \
 	    exit 2; fi
 	python3 tools/grade.py --cache $(GRADE_CACHE) --batch $(SUBMISSIONS) \
 	    $(if $(OUT),--out $(OUT)) $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") \
-	    $(GRADE_FLAGS)
+	    $(GRADE_PLAN) $(GRADE_FLAGS)
+
+gradescope: | deps
+	python3 tools/gradescope.py --out $(BUILD)/gradescope/autograder.zip \
+	    $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") $(GRADE_PLAN) -- $(GRADE_FLAGS)

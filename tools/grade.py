@@ -10,6 +10,10 @@ ignored and reported. Archives are read member by member: no member is ever
 written outside the grader's own directory, links and special files are
 ignored, and sizes are limited.
 
+With --plan FILE --assignment NAME (a course plan, docs/course.md) the
+assignment's exercises are graded, worth the plan's points. @FILE stands for
+the arguments in FILE, one per line (Gradescope's grade_flags).
+
 Which chapters are graded: those of --chapters ("05", "02 05"), else the
 chapters a kit was built for (the exercises.json of a kit that `make
 exercises CHAPTERS=...` made), else every chapter with exercises. Their
@@ -40,7 +44,10 @@ chapter as written. Prose changes are always fine.
 
 Outputs, in --out (default build/grade/NAME), rewritten atomically after every
 test: results.json (Gradescope), junit.xml and results.txt (a plain table).
-Batch mode writes OUT/NAME/ for each student and OUT/grades.csv.
+Batch mode writes OUT/NAME/ for each student, OUT/grades.csv (a row per
+student and exercise) and OUT/gradebook.csv (a row per student, a column per
+exercise and the total; the student from a submission directory's
+submission_metadata.json, Gradescope's, else the submission's name).
 
 The student's code runs with the grader's privileges: rlimits and a temporary
 working directory, no sandbox. Run it in a container (Gradescope's is one).
@@ -68,6 +75,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import exercises  # noqa: E402
+import course  # noqa: E402
 import grade_build  # noqa: E402
 import sandbox  # noqa: E402
 
@@ -675,12 +683,12 @@ class Report:
         if self.notes:
             lines.append('')
         for chapter, ident, got, points, statuses in self.exercise_scores():
-            lines.append('chapter %s  %-8s %6.2f / %d' % (chapter, ident, got, points))
+            lines.append('chapter %s  %-8s %6.2f / %g' % (chapter, ident, got, points))
             for r in (r for r in self.results if r.exercise == ident):
                 lines.append('    %-13s %5.2f/%-5.2f %s%s  %s' % (
                     r.status, r.score, r.max_score, r.full, ' (hidden)' if r.hidden else '',
                     first_line(shown_message(r))))
-        lines += ['', 'total %.2f / %d' % (total, maximum)]
+        lines += ['', 'total %.2f / %g' % (total, maximum)]
         return '\n'.join(lines) + '\n'
 
 
@@ -753,26 +761,62 @@ def graded_chapters(book, requested, root):
     return with_exercises
 
 
+def graded_exercises(book, args, root):
+    """{exercise id: points} of what is graded: the exercises of --assignment
+    in --plan, with the plan's points; else those of graded_chapters()."""
+    if args.plan:
+        if args.chapters:
+            raise SystemExit('grade: give --chapters or --plan, not both')
+        if not args.assignment:
+            raise SystemExit('grade: --plan needs --assignment NAME')
+        try:
+            plan = course.load(args.plan, {e.id: e.points for e in book.exercises})
+            return dict(plan.assignment(args.assignment).points)
+        except course.PlanError as e:
+            raise SystemExit('grade: %s' % e)
+    if args.assignment:
+        raise SystemExit('grade: --assignment needs --plan FILE')
+    if not args.chapters:
+        manifest = os.path.join(root, 'exercises.json')
+        try:
+            with open(manifest, encoding='utf-8') as f:
+                kit = json.load(f)
+        except OSError:
+            kit = {}
+        except ValueError as e:
+            raise SystemExit('grade: %s cannot be read (%s): give --chapters'
+                             % (manifest, e))
+        if isinstance(kit, dict) and kit.get('assignment'):
+            # The kit of an assignment of a plan: its exercises and points.
+            return {e['id']: e['points'] for e in kit['exercises']}
+    numbers = graded_chapters(book, args.chapters, root)
+    return {e.id: e.points for c in book.chapters if c.number in numbers
+            for e in c.exercises}
+
+
 def grade(args, path, out):
     root = args.root
     ref_paths, book = load_book(root)
-    selected = graded_chapters(book, args.chapters, root)
+    selected = graded_exercises(book, args, root)
     label = re.sub(r'\.(tar\.gz|tgz|zip)$', '', os.path.basename(os.path.normpath(path)))
     report = Report(out, label)
     report.secret = args.secret
     names = {os.path.basename(p): p for p in ref_paths}
     sub = read_submission(path, set(names))
-    graded = [c for c in book.chapters if c.number in selected]
-    # Every exercise's tests, NOT-RUN until graded.
+    graded = [c for c in book.chapters if any(e.id in selected for e in c.exercises)]
+    # Every graded exercise's tests, NOT-RUN until graded.
     for chapter in graded:
         for e in chapter.exercises:
-            report.exercises.append((chapter.number, e.id, e.points))
+            if e.id not in selected:
+                continue
+            points = selected[e.id]
+            report.exercises.append((chapter.number, e.id, points))
             tests = [(s, n, False) for s, n, _, _ in sorted(set(e.public_tests))] + \
                     [(s, n, True) for s, n, _, _ in sorted(set(e.hidden_tests))]
             tests = list(dict.fromkeys(tests))
             hint = hint_text(e, chapter.lines)
             for s, n, hidden in tests:
-                r = Result(e.id, chapter.number, s, n, hidden, e.points / len(tests), hint)
+                r = Result(e.id, chapter.number, s, n, hidden, points / len(tests), hint)
                 r.message = 'chapter %s is not in the submission' % chapter.path
                 report.results.append(r)
     for problem in sub.problems:
@@ -860,6 +904,8 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
         earlier = [p for p in ref_paths if exercises.chapter_number(p) < number]
         for exercise in chapter.exercises:
             mine = [r for r in results if r.exercise == exercise.id]
+            if not mine:    # not graded in this assignment
+                continue
             if student is None:
                 text, line_map = exercise_text(chapter, None, {}, exercise, student_name,
                                                False)
@@ -914,6 +960,53 @@ def submissions_in(directory):
     return found
 
 
+METADATA = 'submission_metadata.json'
+
+
+def submitters(name, path):
+    """[(student, login)] of a submission: the users of Gradescope's
+    submission_metadata.json at the top of a submission directory (several
+    for a group), else the submission's name for both."""
+    meta = os.path.join(path, METADATA)
+    if os.path.isdir(path) and os.path.isfile(meta) and not os.path.islink(meta):
+        try:
+            with open(meta, encoding='utf-8') as f:
+                users = json.load(f)['users']
+            found = [(str(u.get('name') or u.get('email') or u.get('id')),
+                      str(u.get('email') or u.get('sid') or u.get('id') or name))
+                     for u in users if isinstance(u, dict)]
+            if found:
+                return found, None
+            problem = 'no users'
+        except (OSError, ValueError, KeyError, TypeError) as e:
+            problem = str(e) or type(e).__name__
+        return [(name, name)], '%s: %s cannot be read (%s): the submission\'s name is used' \
+            % (name, METADATA, problem)
+    return [(name, name)], None
+
+
+def write_gradebook(path, exercises_graded, students):
+    """One row per student: Student, SIS Login ID, Section (empty), a column
+    per exercise (its points), Total. Canvas matches the rows to its students
+    by SIS Login ID and wants the Section column, which may be empty; Moodle
+    matches by the column one maps to an identifier at import. No other rows
+    (a "points possible" row would be a student that Moodle cannot find).
+    students: [(student, login, {exercise: points} or None if the grader
+    failed)]."""
+    with open(path + '.tmp', 'w', newline='', encoding='utf-8') as f:
+        w = csv.writer(f)
+        w.writerow(['Student', 'SIS Login ID', 'Section'] +
+                   [e for e, _ in exercises_graded] + ['Total'])
+        for student, login, points in sorted(students, key=lambda s: (s[1], s[0])):
+            if points is None:      # the grader failed: no number rather than a wrong one
+                w.writerow([student, login, ''] + [''] * (len(exercises_graded) + 1))
+                continue
+            values = [points.get(e, 0) for e, _ in exercises_graded]
+            w.writerow([student, login, ''] + ['%g' % round(v, 4) for v in values] +
+                       ['%g' % round(sum(values), 4)])
+    os.replace(path + '.tmp', path)
+
+
 def grade_batch(args):
     out = os.path.abspath(args.out or os.path.join(args.root, 'build', 'grade', 'batch'))
     os.makedirs(out, exist_ok=True)
@@ -923,7 +1016,10 @@ def grade_batch(args):
     # The chapters are resolved once, here, so that every student is graded
     # on the same set (and a wrong --chapters stops the batch before it starts).
     _, book = load_book(args.root)
-    chapters = graded_chapters(book, args.chapters, args.root)
+    selected = graded_exercises(book, args, args.root)   # a bad plan stops the batch here
+    # Children given no choice make the same default one (the kit's
+    # exercises.json, or every chapter).
+    chapters = graded_chapters(book, args.chapters, args.root) if args.chapters else []
     # One secret for the whole batch: every student's code answers the same
     # cases.
     forwarded = ['--root', args.root, '--cache', args.cache, '--time-limit',
@@ -935,15 +1031,20 @@ def grade_batch(args):
                  '--cxxflags', args.cxxflags, '--build-jobs', '1']
     if args.allow_no_sandbox:
         forwarded.append('--allow-no-sandbox')
-    if chapters:    # none: the kit chose no chapter with exercises; so will each child
+    if chapters:
         forwarded += ['--chapters', ' '.join(chapters)]
+    if args.plan:
+        forwarded += ['--plan', os.path.abspath(args.plan), '--assignment', args.assignment]
     if args.allow_changes_outside_exercises:
         forwarded.append('--allow-changes-outside-exercises')
 
-    targets, used = {}, set()
+    targets, used, identities, notes = {}, set(), {}, []
     for student, path in subs:
+        identities[path], problem = submitters(student, path)
+        if problem:
+            notes.append(problem)
         name = re.sub(r'[^\w.-]', '_', student)
-        while name in used or name in ('grades.csv', 'cache'):
+        while name in used or name in ('grades.csv', 'gradebook.csv', 'cache'):
             name += '_'
         used.add(name)
         targets[path] = os.path.join(out, name)
@@ -956,24 +1057,29 @@ def grade_batch(args):
         code, output = grade_build.run([sys.executable, os.path.abspath(__file__), path,
                                         '--out', target, '--quiet'] + forwarded,
                                        timeout=args.submission_time_limit)
-        return os.path.basename(target), target, code, output, time.time() - t0
+        return os.path.basename(target), target, code, output, time.time() - t0, path
 
+    book_rows = []
     workers = max(1, min(2, args.workers))
     with concurrent.futures.ThreadPoolExecutor(workers) as pool:
         futures = [pool.submit(one, item) for item in subs]
         for future in concurrent.futures.as_completed(futures):
-            student, target, code, output, elapsed = future.result()
+            student, target, code, output, elapsed, path = future.result()
             done[0] += 1
             try:
                 with open(os.path.join(target, 'results.json'), encoding='utf-8') as f:
                     data = json.load(f)
+                points = {}
                 for e in data['extra_data']['exercises']:
                     rows.append((student, e['chapter'], e['exercise'], e['points'],
                                  e['max_points']))
+                    points[e['exercise']] = e['points']
+                book_rows.extend((name, login, points) for name, login in identities[path])
                 score = '%g/%g' % (data['score'], data['max_score'])
             except (OSError, ValueError, KeyError) as e:
                 broken.append(student)
                 rows.append((student, '', '', 0, ''))
+                book_rows.extend((name, login, None) for name, login in identities[path])
                 score = 'GRADER ERROR (%s): %s' % (code, first_line(output[-2000:]) or e)
             if code != 0 and student not in broken:
                 broken.append(student)
@@ -987,6 +1093,15 @@ def grade_batch(args):
         w.writerow(['student', 'chapter', 'exercise', 'points', 'max_points'])
         w.writerows(sorted(rows, key=lambda r: (r[0], str(r[1]), str(r[2]))))
     os.replace(csv_path + '.tmp', csv_path)
+    # The gradebook: one row per student, the exercises in the book's order.
+    gradebook = os.path.join(out, 'gradebook.csv')
+    write_gradebook(gradebook, [(e.id, selected[e.id]) for e in book.exercises
+                                if e.id in selected], book_rows)
+    logins = [login for _, login, _ in book_rows]
+    for login in sorted({x for x in logins if logins.count(x) > 1}):
+        notes.append('%s is in more than one submission: check the gradebook' % login)
+    for note in notes:
+        print('grade-batch: ' + note, file=sys.stderr)
     totals = {}
     for student, _, _, points, _ in rows:
         totals[student] = totals.get(student, 0) + float(points or 0)
@@ -997,12 +1112,23 @@ def grade_batch(args):
                                     values[0] if values else 0,
                                     values[len(values) // 2] if values else 0,
                                     values[-1] if values else 0, csv_path))
+    print('gradebook (one row per student): %s' % gradebook)
     return 0
 
 
+class FlagsFileParser(argparse.ArgumentParser):
+    """@FILE on the command line stands for the arguments in FILE, one per
+    line; blank lines and lines that start with # are left out (Gradescope's
+    grade_flags, tools/gradescope.py)."""
+    def convert_arg_line_to_args(self, line):
+        line = line.strip()
+        return [] if not line or line.startswith('#') else [line]
+
+
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split('\n')[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = FlagsFileParser(description=__doc__.split('\n')[0],
+                             formatter_class=argparse.RawDescriptionHelpFormatter,
+                             fromfile_prefix_chars='@')
     parser.add_argument('submission', nargs='?')
     parser.add_argument('--batch', metavar='DIR', help='grade every subdirectory or archive')
     parser.add_argument('--out', help='output directory (default build/grade/NAME)')
@@ -1032,6 +1158,10 @@ def main(argv=None):
                         help='grade the exercises of these chapters only (numbers, '
                         'separated by spaces or commas; default: the chapters of the '
                         "kit's exercises.json, else every chapter with exercises)")
+    parser.add_argument('--plan', metavar='FILE',
+                        help='a course plan (docs/course.md): grade the exercises of '
+                        '--assignment with the plan\'s points')
+    parser.add_argument('--assignment', metavar='NAME', help='an assignment of --plan')
     parser.add_argument('--allow-changes-outside-exercises', action='store_true')
     parser.add_argument('--quiet', action='store_true')
     args = parser.parse_args(argv)

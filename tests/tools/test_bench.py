@@ -33,6 +33,16 @@ def last_chapter_number():
     return os.path.basename(chapters[-1])[:2]
 
 
+def has_benchmark():
+    """Whether a chapter of this book writes the benchmark (a kit of the
+    chapters before the appendix has none: tools/bench.mk then builds nothing)."""
+    for path in glob.glob(os.path.join(ROOT, 'chapters', '[0-9][0-9]-*.md')):
+        with open(path, encoding='utf-8') as f:
+            if '\n<<bench/bvhbench.cpp>>=\n' in f.read():
+                return True
+    return False
+
+
 def make(*args):
     env = {k: v for k, v in os.environ.items() if k not in MAKE_VARIABLES}
     return subprocess.run(['make', '--no-print-directory'] + list(args),
@@ -50,6 +60,7 @@ def write_rays(path, rays):
             f.write(struct.pack('<6f', *ray))
 
 
+@unittest.skipUnless(has_benchmark(), 'no chapter of this book writes the benchmark')
 class BenchProgramTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -121,6 +132,7 @@ class BenchProgramTest(unittest.TestCase):
         self.assertEqual([first['rays'][k]['ratio'] for k in rays], [1, 1])
 
 
+@unittest.skipUnless(has_benchmark(), 'no chapter of this book writes the benchmark')
 class BenchConfigurationTest(unittest.TestCase):
     """A configuration other than the default, built into a scratch BUILD:
     -O0, because it compiles fastest, and a macro whose '=' the directory's

@@ -291,6 +291,16 @@ class StudentEditionTest(unittest.TestCase):
         self.assertEqual(text.split('<<Add up the squares of v>>=')[0],
                          original.split('<<Add up the squares of v>>=')[0])
 
+    def test_later_stub_message_is_the_one_make_test_skips_on(self):
+        # tests/calls/core.h recognizes a later assignment's stub by its
+        # words; the two must agree.
+        book = exercises.load([os.path.join(FIXTURE, CH1)], root=FIXTURE, tests=False)
+        message = exercises.stub_message(book.exercises[1], 'Clamp v to the range', True)
+        self.assertEqual(message, 'Exercise ex-1.2 comes with a later assignment: leave '
+                         '<Clamp v to the range> (Section 1.2, Clamping) as it is for now')
+        core = read(os.path.join(ROOT, 'tests', 'calls', 'core.h'))
+        self.assertIn('" %s: "' % exercises.LATER_STUB, core)
+
     def test_stub_lines_fit_the_column(self):
         lines = exercises.throw_lines(' ' * 12, 'Exercise ex-6.12 is not done yet: write <'
                                       + 'A very long fragment name ' * 5 + '"quoted" \\ '
@@ -552,6 +562,138 @@ class KitTest(unittest.TestCase):
                       FIXTURE, '--out', os.path.join(self.out, 'x'), '--no-book', '07'])
         self.assertNotEqual(result.returncode, 0)
         self.assertIn('no chapter 07', result.stderr)
+
+
+class PlanKitTest(unittest.TestCase):
+    """The kits of one assignment of a course plan (docs/course.md), of the
+    fixture book: ex-2.1 now, worth 10; ex-1.2 in the next assignment, so a
+    stub in this kit although its chapter comes first; ex-1.1 in no
+    assignment, so solved."""
+
+    PLAN = ('title = "fixture course"\n\n'
+            '[[assignment]]\nname = "first"\nexercises = ["ex-2.1"]\n'
+            'points = { "ex-2.1" = 10 }\n\n'
+            '[[assignment]]\nname = "second"\nexercises = ["ex-1.2"]\n')
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp()
+        cls.plan = os.path.join(cls.tmp, 'course.toml')
+        write(cls.plan, cls.PLAN)
+        cls.out = os.path.join(cls.tmp, 'first')
+        cls.result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build',
+                          '--src', FIXTURE, '--out', cls.out, '--no-book',
+                          '--plan', cls.plan, '--assignment', 'first'])
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp)
+
+    def setUp(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stdout + self.result.stderr)
+
+    def test_later_assignments_stay_stubs(self):
+        student = os.path.join(self.out, 'student')
+        ch1, ch2 = read(os.path.join(student, CH1)), read(os.path.join(student, CH2))
+        self.assertIn('Exercise ex-2.1 is not done yet', ch2)
+        self.assertIn('Exercise ex-1.2 comes with a later assignment', ch1)
+        self.assertNotIn('Exercise ex-1.1 is not done yet', ch1)
+        self.assertIn(read(os.path.join(FIXTURE, CH1)).split('<<Add up the squares of v>>=')[1]
+                      .split('@\n')[0], ch1)
+        for name in (CH1, CH2):
+            self.assertEqual(read(os.path.join(self.out, 'solution', name)),
+                             read(os.path.join(FIXTURE, name)))
+        self.assertIn('ex-1.2 are stubs too', read(os.path.join(student, 'README.md')))
+        self.assertEqual(exercise_kits.leaks(self.out, FIXTURE), [])
+
+    def test_manifest_has_the_plans_points(self):
+        manifest = json.loads(read(os.path.join(self.out, 'student', 'exercises.json')))
+        self.assertEqual([(e['id'], e['points']) for e in manifest['exercises']],
+                         [('ex-2.1', 10)])
+        self.assertEqual(manifest['points'], 10)
+        self.assertEqual(manifest['unreleased'], ['ex-1.2'])
+        self.assertEqual(manifest['assignment']['name'], 'first')
+        readme = read(os.path.join(self.out, 'student', 'README.md'))
+        self.assertIn('| 2.1 | 10 | The mean |', readme)
+
+    def test_planted_solution_of_a_later_assignment_is_found(self):
+        out = os.path.join(self.tmp, 'planted')
+        shutil.copytree(os.path.join(self.out, 'student'), os.path.join(out, 'student'))
+        solution = read(os.path.join(FIXTURE, CH1)).split('<<Clamp v to the range>>=')[1]
+        solution = solution.split('// BEGIN SOLUTION\n')[1].split('// END SOLUTION')[0]
+        path = os.path.join(out, 'student', 'tests', 'ch01', 'test_sums.cpp')
+        write(path, read(path) + '/*\n' + solution + '*/\n')
+        self.assertTrue([p for p in exercise_kits.leaks(out, FIXTURE) if 'ex-1.2' in p])
+
+    def test_bad_plan_stops_the_build_with_file_and_line(self):
+        bad = os.path.join(self.tmp, 'bad.toml')
+        write(bad, self.PLAN.replace('"ex-1.2"]', '"ex-1.3"]'))
+        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build',
+                      '--src', FIXTURE, '--out', os.path.join(self.tmp, 'bad'), '--no-book',
+                      '--plan', bad, '--assignment', 'first'])
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn(bad + ':10: assignment \'second\': ex-1.3 is not an exercise',
+                      result.stderr)
+
+    def test_tests_reaching_a_later_assignments_stub_are_skipped(self):
+        # Two tests of ex-1.1, which no assignment sets (so it is solved in the
+        # kit), use ex-1.2, which the next assignment sets: one through an
+        # exercise call, one in its own check. In the student kit's make test
+        # both are skipped with the stub's message, as is ex-1.2's own test;
+        # ex-2.1's tests (this assignment's) still fail.
+        v = Variant(self)
+        v.replace('tests/ch01/exercise_calls.h', 'inline int Clamp(',
+                  'inline long SumOfClampedSquares(std::vector<int> v) {\n'
+                  '    for (int &x : v) x = lrt::Clamp(x, -3, 3);\n'
+                  '    return lrt::SumOfSquares(v);\n}\ninline int Clamp(')
+        v.replace('tests/ch01/exercise_calls.h', 'LRT_EXERCISE_CALL(Clamp)',
+                  'LRT_EXERCISE_CALL(Clamp)\nLRT_EXERCISE_CALL(SumOfClampedSquares)')
+        v.replace('tests/ch01/test_sums.cpp', 'TEST(SumOfSquares, EmptyVectorThrows)',
+                  'EXERCISE_TEST(Ex1_1_SumOfSquares, ClampedThroughACall) {\n'
+                  '    EXPECT_EQ(ex::SumOfClampedSquares(std::vector<int>{5, -1}), 10);\n}\n\n'
+                  'EXERCISE_TEST(Ex1_1_SumOfSquares, ClampedInTheCheck) {\n'
+                  '    EXPECT_EQ(ex::SumOfSquares(std::vector<int>{2}), Clamp(9, 0, 4));\n}\n\n'
+                  'TEST(SumOfSquares, EmptyVectorThrows)')
+        out = os.path.join(self.tmp, 'reaching')
+        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build', '--src',
+                      v.dir, '--out', out, '--no-book', '--plan', self.plan,
+                      '--assignment', 'first'])
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        student = os.path.join(out, 'student')
+        ch1 = exercise_kits.make(student, ['test', 'CH=01'])
+        self.assertEqual(ch1.returncode, 0, ch1.stdout + ch1.stderr)
+        later = ': Exercise ex-1.2 comes with a later assignment: leave <Clamp v to the range>'
+        for name in ('Ex1_1_SumOfSquares.ClampedThroughACall',
+                     'Ex1_1_SumOfSquares.ClampedInTheCheck', 'Ex1_2_Clamp.InsideAndOutside'):
+            self.assertIn('SKIPPED: asof01/ch01 %s%s' % (name, later), ch1.stdout)
+        self.assertIn('tests: 4 passed, 0 failed, 3 skipped', ch1.stdout)
+        ch2 = exercise_kits.make(student, ['test', 'CH=02'])
+        self.assertNotEqual(ch2.returncode, 0)
+        self.assertIn('FAILED: asof02/ch02 Ex2_1_Mean.SmallVectors', ch2.stdout)
+        self.assertNotIn('SKIPPED', ch2.stdout)
+        # `try` accepts both: the failures are this assignment's, the skips
+        # a later one's.
+        tried = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'try', '--src',
+                     v.dir, '--out', out, 'CH=02'])
+        self.assertEqual(tried.returncode, 0, tried.stdout + tried.stderr)
+        self.assertIn('try: student kit: make test CH=02: tests: 2 passed, 1 failed',
+                      tried.stdout)
+        # A test of chapter 2 that fails for another reason, and one that
+        # reaches ex-2.1's stub: only the first is a problem.
+        test = os.path.join(student, 'tests', 'ch02', 'test_means.cpp')
+        write(test, read(test) + '\nTEST(Mean, Planted) { EXPECT_EQ(Twice(2), 5); }\n'
+              'TEST(Mean, UsesTheMean) { EXPECT_EQ(Mean({2}), 2); }\n')
+        tried = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'try', '--src',
+                     v.dir, '--out', out, 'CH=02'])
+        self.assertNotEqual(tried.returncode, 0)
+        self.assertIn('student: asof02/ch02 Mean.Planted fails, and not only because of '
+                      'this assignment\'s stubs', tried.stderr)
+        self.assertNotIn('UsesTheMean fails', tried.stderr)
+        # The solution kit must be the source's.
+        write(os.path.join(out, 'solution', 'tests', 'ch01', 'test_sums.cpp'), '\n')
+        tried = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'try', '--src',
+                     v.dir, '--out', out, 'CH=01'])
+        self.assertIn('solution: tests/ch01/test_sums.cpp is not the source\'s', tried.stderr)
 
 
 class ValidationTest(unittest.TestCase):

@@ -262,6 +262,13 @@ def make_submissions(ns, root=ROOT):
         z.writestr('lrt/README.txt', 'my work')
     put('student', student, '05-slab-test.md')        # no chapters/ folder
     put('two_of_three', two_of_three)
+    # A group submission as Gradescope exports it: its metadata names the
+    # students (the gradebook gives each a row).
+    put('group', two_of_three)
+    ns.group = [{'name': 'Ada Lovelace', 'email': 'ada@example.edu', 'id': 11},
+                {'name': 'Alan Turing', 'email': 'alan@example.edu', 'id': 12}]
+    with open(os.path.join(ns.subs, 'group', 'submission_metadata.json'), 'w') as f:
+        json.dump({'id': 1, 'users': ns.group}, f)
     put('compile_error', ns.broken)
     put('crashes', crashes)
     put('hangs', hangs)
@@ -308,7 +315,7 @@ def make_submissions(ns, root=ROOT):
     ns.expected = {
         'solution': {}, 'duplicated': {}, 'changed_outside': {}, 'tamper': {},
         'student': every('FAIL', 'Exercise %s is not done yet'),
-        'two_of_three': stub10,
+        'two_of_three': stub10, 'group': stub10,
         'compile_error': {ns.e9: ('COMPILE-ERROR', None)},
         'compile_error_spliced': {ns.e11: ('COMPILE-ERROR', None)},
         'empty': every('NOT-RUN', 'is not in the submission'),
@@ -612,6 +619,76 @@ class GradeTest(unittest.TestCase):
         for student, exercises in seen.items():
             self.assertEqual(sorted(exercises), sorted(self.points), student)
         self.assertIn('graded %d submissions' % len(expected), self.batch_output)
+
+    def test_gradebook_has_a_row_per_student(self):
+        with open(os.path.join(self.out, 'gradebook.csv'), newline='') as f:
+            rows = list(csv.reader(f))
+        order = [e for e in self.book if e in self.points]   # the book's order
+        self.assertEqual(rows[0], ['Student', 'SIS Login ID', 'Section'] + order + ['Total'])
+        self.assertEqual({r[2] for r in rows[1:]}, {''})
+        got = {(r[0], r[1]): r[3:] for r in rows[1:]}
+        self.assertEqual(len(got), len(rows) - 1)
+        people = {(n, n): n for n in self.expected if n != 'group'}
+        people.update({(u['name'], u['email']): 'group' for u in self.group})
+        self.assertEqual(sorted(got), sorted(people))
+        for who, name in people.items():
+            expected = self.expected[name]
+            values = [self.points[e] if e in self.ch5 and e not in expected else 0
+                      for e in order]
+            self.assertEqual([float(v) for v in got[who][:-1]], values, who)
+            self.assertAlmostEqual(float(got[who][-1]), self.expected_score(expected),
+                                   places=3)
+
+    # -- Grading by a course plan (docs/course.md) ---------------------------
+
+    def plan(self, text):
+        path = os.path.join(tempfile.mkdtemp(dir=self.tmp), 'course.toml')
+        with open(path, 'w') as f:
+            f.write(text)
+        return path
+
+    def test_plan_grades_its_assignment_with_its_points(self):
+        plan = self.plan('[[assignment]]\nname = "first"\nexercises = ["%s"]\n\n'
+                         '[[assignment]]\nname = "second"\nexercises = ["%s", "%s"]\n'
+                         'points = { "%s" = 7.5 }\n' % (self.e10, self.e9, self.e11, self.e9))
+        maximum = 7.5 + self.points[self.e11]
+        for name in ('solution.zip', 'two_of_three'):   # ex-5.10 is not in "second"
+            data = self.grade_one(name, ['--plan', plan, '--assignment', 'second'])
+            self.assertEqual(data['max_score'], maximum)
+            self.assertAlmostEqual(data['score'], maximum, places=3)
+            self.assertEqual(sorted(t['name'] for t in data['tests']),
+                             sorted('%s %s' % (e, n) for e in (self.e9, self.e11)
+                                    for n, _ in self.tests[e]))
+            for t in data['tests']:
+                if t['name'].startswith(self.e9 + ' '):
+                    self.assertAlmostEqual(t['max_score'], 7.5 / len(self.tests[self.e9]),
+                                           places=4)
+        data = self.grade_one('two_of_three', ['--plan', plan, '--assignment', 'first'])
+        self.assertEqual(data['score'], 0)
+        self.assertEqual(data['max_score'], self.points[self.e10])
+
+    def test_bad_plan_is_named_with_its_line(self):
+        base = '[[assignment]]\nname = "a"\nexercises = ["%s"]\n' % self.e9
+        cases = [(base + 'colour = "red"\n', ':4: ', "unknown key 'colour'"),
+                 (base.replace(self.e9, 'ex-99.1'), ':3: ', 'ex-99.1 is not an exercise'),
+                 (base + '[[assignment]]\nname = "b"\nexercises = ["%s"]\n' % self.e9,
+                  ':6: ', 'already in'),
+                 (base + 'release = 2027-09-02\ndue = 2027-09-01\n', ':5: ',
+                  'is before release'),
+                 (base + 'points = { "%s" = -1 }\n' % self.e9, ':4: ', 'positive number'),
+                 (base + 'name = [\n', ':4:', 'not valid TOML')]
+        for text, line, message in cases:
+            plan = self.plan(text)
+            proc = run_grade([os.path.join(self.subs, 'empty'), '--out',
+                              os.path.join(self.tmp, 'rejected'), '--plan', plan,
+                              '--assignment', 'a', '--quiet'])
+            self.assertNotEqual(proc.returncode, 0, text)
+            self.assertIn(plan + line, proc.stderr)
+            self.assertIn(message, proc.stderr)
+            self.assertFalse(os.path.exists(os.path.join(self.tmp, 'rejected')))
+        proc = run_grade([os.path.join(self.subs, 'empty'), '--plan', self.plan(base),
+                          '--assignment', 'nope', '--quiet'])
+        self.assertIn("no assignment named 'nope' (assignments: a)", proc.stderr)
 
     # -- Which chapters are graded ------------------------------------------
 

@@ -921,12 +921,13 @@ bool FastBVHAccel::Intersect(const Ray &ray,
     TraverseFastBVH(nodes.data(), tris, root, rootNode, ray, fr,
                     [&](FastBVHChild leaf) {
         // Find the closest hit among a fast leaf's primitives
-        for (int i = 0; i < leaf.nTriangles; ++i) {
+        const FastTriangle *end = tris + leaf.offset + leaf.nTriangles;
+        for (const FastTriangle *tri = tris + leaf.offset; tri != end; ++tri) {
             FastTriangleHit hit;
-            if (IntersectTriangle(tris[leaf.offset + i], fr, ray, &hit)) {
+            if (IntersectTriangle(*tri, fr, ray, &hit)) {
                 ray.tMax = hit.t;
                 closest = hit;
-                hitTriangle = leaf.offset + i;
+                hitTriangle = tri - tris;
                 LRT_PREFETCH(&triangleInfo[hitTriangle]);
                 LRT_PREFETCH(&primitives[hitTriangle]);
             }

@@ -332,17 +332,18 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     __m128 pz = _mm_sub_ps(_mm_load_ps(tri.c[fr.kz]), _mm_set1_ps(fr.o[fr.kz]));
     __m128 xs = _mm_add_ps(px, _mm_mul_ps(_mm_set1_ps(fr.Sx), pz));
     __m128 ys = _mm_add_ps(py, _mm_mul_ps(_mm_set1_ps(fr.Sy), pz));
-    // Lane i of next holds vertex i + 1, of last vertex i + 2 (modulo 3)
+    // Lane i of next holds vertex i + 1 (modulo 3), and lane i of es holds
+    // x_i y_{i+1} - y_i x_{i+1}, which is e_{i+2}: e2, e0, e1
     __m128 xNext = _mm_shuffle_ps(xs, xs, _MM_SHUFFLE(3, 0, 2, 1));
     __m128 yNext = _mm_shuffle_ps(ys, ys, _MM_SHUFFLE(3, 0, 2, 1));
-    __m128 xLast = _mm_shuffle_ps(xs, xs, _MM_SHUFFLE(3, 1, 0, 2));
-    __m128 yLast = _mm_shuffle_ps(ys, ys, _MM_SHUFFLE(3, 1, 0, 2));
-    __m128 es = _mm_sub_ps(_mm_mul_ps(xNext, yLast), _mm_mul_ps(yNext, xLast));
-    __m128 zero = _mm_setzero_ps();
-    unsigned negative = unsigned(_mm_movemask_ps(_mm_cmplt_ps(es, zero))) & 7u;
-    unsigned positive = unsigned(_mm_movemask_ps(_mm_cmpgt_ps(es, zero))) & 7u;
-    unsigned zeros = unsigned(_mm_movemask_ps(_mm_cmpeq_ps(es, zero))) & 7u;
-    if (negative != 0 && positive != 0 && zeros == 0) return false;
+    __m128 es = _mm_sub_ps(_mm_mul_ps(xs, yNext), _mm_mul_ps(ys, xNext));
+    // The sign bits are the signs where the magnitudes are greater than zero
+    // (neither zero nor NaN); reject if all three are and the signs differ
+    __m128 magnitude = _mm_andnot_ps(_mm_set1_ps(-0.f), es);
+    __m128 nonzeroLanes = _mm_cmpgt_ps(magnitude, _mm_setzero_ps());
+    unsigned nonzero = unsigned(_mm_movemask_ps(nonzeroLanes)) & 7u;
+    unsigned negative = unsigned(_mm_movemask_ps(es)) & 7u;
+    if (nonzero == 7u && negative != 0 && negative != 7u) return false;
     // Unpack the vector lanes into the scalar test's variables
     alignas(16) float lane[6][4];
     _mm_store_ps(lane[0], px);
@@ -356,7 +357,7 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     Point3f p2t(lane[0][2], lane[1][2], lane[2][2]);
     Float x0 = lane[3][0], x1 = lane[3][1], x2 = lane[3][2];
     Float y0 = lane[4][0], y1 = lane[4][1], y2 = lane[4][2];
-    Float e0 = lane[5][0], e1 = lane[5][1], e2 = lane[5][2];
+    Float e0 = lane[5][1], e1 = lane[5][2], e2 = lane[5][0];
     const Float Sz = fr.Sz;
 #else
     // Translate and permute the vertices with the ray's axes
@@ -514,7 +515,15 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
     constexpr int nearX = (octant & 1) * w, farX = w - nearX;
     constexpr int nearY = (2 + (octant >> 1 & 1)) * w, farY = 5 * w - nearY;
     constexpr int nearZ = (4 + (octant >> 2 & 1)) * w, farZ = 9 * w - nearZ;
-    {
+#if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
+    // Copy the ray's values for the box test into SSE2 registers
+    const __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy),
+                 oz = _mm_set1_ps(r.oz);
+    const __m128 ix = _mm_set1_ps(r.ix), iy = _mm_set1_ps(r.iy),
+                 iz = _mm_set1_ps(r.iz);
+    const __m128 widen = _mm_set1_ps(1 + 2 * gamma(3));
+#endif
+    if (root.IsLeaf()) {
         const FastBVHNode &node = rootNode;
         // Intersect the ray with the child boxes of node
         Float t[fastBVHWidth];
@@ -524,8 +533,6 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
             Float t1[fastBVHWidth];
         #if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
             // Test the four boxes in the lanes of SSE2 registers
-            __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy), oz = _mm_set1_ps(r.oz);
-            __m128 ix = _mm_set1_ps(r.ix), iy = _mm_set1_ps(r.iy), iz = _mm_set1_ps(r.iz);
             __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearX), ox), ix);
             __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farX), ox), ix);
             __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearY), oy), iy);
@@ -541,7 +548,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
             tFar = _mm_min_ps(ty1, tFar);
             tFar = _mm_min_ps(tz1, tFar);
             _mm_storeu_ps(t, tNear);
-            _mm_storeu_ps(t1, _mm_mul_ps(tFar, _mm_set1_ps(1 + 2 * gamma(3))));
+            _mm_storeu_ps(t1, _mm_mul_ps(tFar, widen));
         #else
             for (int c = 0; c < fastBVHWidth; ++c) {
                 Float tx0 = (b[nearX + c] - r.ox) * r.ix;
@@ -575,8 +582,6 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 Float t1[fastBVHWidth];
             #if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
                 // Test the four boxes in the lanes of SSE2 registers
-                __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy), oz = _mm_set1_ps(r.oz);
-                __m128 ix = _mm_set1_ps(r.ix), iy = _mm_set1_ps(r.iy), iz = _mm_set1_ps(r.iz);
                 __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearX), ox), ix);
                 __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farX), ox), ix);
                 __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearY), oy), iy);
@@ -592,7 +597,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 tFar = _mm_min_ps(ty1, tFar);
                 tFar = _mm_min_ps(tz1, tFar);
                 _mm_storeu_ps(t, tNear);
-                _mm_storeu_ps(t1, _mm_mul_ps(tFar, _mm_set1_ps(1 + 2 * gamma(3))));
+                _mm_storeu_ps(t1, _mm_mul_ps(tFar, widen));
             #else
                 for (int c = 0; c < fastBVHWidth; ++c) {
                     Float tx0 = (b[nearX + c] - r.ox) * r.ix;
@@ -916,12 +921,13 @@ bool FastBVHAccel::Intersect(const Ray &ray,
     TraverseFastBVH(nodes.data(), tris, root, rootNode, ray, fr,
                     [&](FastBVHChild leaf) {
         // Find the closest hit among a fast leaf's primitives
-        for (int i = 0; i < leaf.nTriangles; ++i) {
+        const FastTriangle *end = tris + leaf.offset + leaf.nTriangles;
+        for (const FastTriangle *tri = tris + leaf.offset; tri != end; ++tri) {
             FastTriangleHit hit;
-            if (IntersectTriangle(tris[leaf.offset + i], fr, ray, &hit)) {
+            if (IntersectTriangle(*tri, fr, ray, &hit)) {
                 ray.tMax = hit.t;
                 closest = hit;
-                hitTriangle = leaf.offset + i;
+                hitTriangle = tri - tris;
                 LRT_PREFETCH(&triangleInfo[hitTriangle]);
                 LRT_PREFETCH(&primitives[hitTriangle]);
             }

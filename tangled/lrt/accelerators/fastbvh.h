@@ -88,8 +88,8 @@ inline unsigned EnteredChildren(const T tNear[fastBVHWidth],
 template <>
 inline unsigned EnteredChildren(const float tNear[fastBVHWidth],
                                 const float tFar[fastBVHWidth]) {
-    __m128 missed = _mm_cmpgt_ps(_mm_loadu_ps(tNear), _mm_loadu_ps(tFar));
-    return ~unsigned(_mm_movemask_ps(missed)) & 15u;
+    __m128 entered = _mm_cmpngt_ps(_mm_loadu_ps(tNear), _mm_loadu_ps(tFar));
+    return unsigned(_mm_movemask_ps(entered));
 }
 #endif
 // FastBVHAccel Declarations

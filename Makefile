@@ -53,9 +53,9 @@ lib: lint
 # The code as of chapter N is the tangle of chapters 1..N; it must compile and
 # pass the tests of chapters 1..N, so no chapter leans on a later one. The
 # tools' own tests (tests/tools) run with the whole set, once: they do not
-# depend on FLOAT or SANITIZE. The appendix (08) is a program, the benchmark,
+# depend on FLOAT or SANITIZE. The appendix (09) is a program, the benchmark,
 # whose tests run it from Python.
-PYTHON_TESTS_08 := tests/tools/test_bench.py
+PYTHON_TESTS_09 := tests/tools/test_bench.py
 test: lint
 	@bins=(); \
 	for n in $(PREFIXES); do \

@@ -1,5 +1,5 @@
-// Chapter 6's exercise calls (tests/calls/calls.h): the tests of ex-6.12,
-// ex-6.13 and ex-6.14 reach BVHAccel's builders and traversal, and the Morton
+// Chapter 6's exercise calls (tests/calls/calls.h): the tests of ex-6.5,
+// ex-6.6 and ex-6.7 reach BVHAccel's builders and traversal, and the Morton
 // code functions, only through these.
 //
 // A test describes its scene as values: an ex::Scene holds the test's own

@@ -4,7 +4,7 @@
 // spheres, disks and triangles; structure invariants of every tree built;
 // degenerate inputs; Morton codes against a bit-by-bit interleaving.
 //
-// The suites Ex6_12_*, Ex6_13_* and Ex6_14_* are the public tests of the
+// The suites Ex6_5_*, Ex6_6_* and Ex6_7_* are the public tests of the
 // chapter's graded exercises (docs/exercises.md): BVHAccel's SAH decisions,
 // checked against the cost model in double precision; the Morton codes and
 // the order of an HLBVH tree's primitives along the curve; the order in
@@ -441,9 +441,9 @@ std::shared_ptr<Primitive> UnitSphereAt(Scene &scene, const Point3f &c,
 }
 
 // The accelerators under test come in sets. Chapter 6's graded exercises
-// hold BVHAccel's SAH decisions (ex-6.12), the Morton codes and radix sort
-// of its HLBVH build (ex-6.13) and its choice of the child to visit first
-// (ex-6.14); in the student edition all of them throw. A test of exercise K
+// hold BVHAccel's SAH decisions (ex-6.5), the Morton codes and radix sort
+// of its HLBVH build (ex-6.6) and its choice of the child to visit first
+// (ex-6.7); in the student edition all of them throw. A test of exercise K
 // (suite Ex6_K_*) uses the set of that exercise, whose accelerators the
 // worker builds and traces (ex::BVHAccel, ex::FastBVHAccel); every other
 // test uses accelerators whose code holds no exercise: FastBVHAccel with its
@@ -506,7 +506,7 @@ AccelSet OwnTraversal(std::vector<SplitMethod> methods) {
     };
 }
 
-// ex-6.14: BVHAccel's Middle and EqualCounts trees, traced by its own
+// ex-6.7: BVHAccel's Middle and EqualCounts trees, traced by its own
 // Intersect() and IntersectP().
 std::vector<Accel> TraversalSet(const Scene &scene, int leafSize) {
     std::vector<Accel> v;
@@ -526,7 +526,7 @@ void AddAdopted(std::vector<Accel> *v, const ex::BVHAccel &bvh, SplitMethod m,
                   std::make_unique<ex::BVHAccel::Adopted>(bvh)});
 }
 
-// ex-6.12: BVHAccel's SAH tree, its decisions checked against the cost
+// ex-6.5: BVHAccel's SAH tree, its decisions checked against the cost
 // model, traced by a TreeWalker and by a FastBVHAccel that adopts it.
 std::vector<Accel> SAHSet(const Scene &scene, int leafSize) {
     std::vector<Accel> v;
@@ -541,7 +541,7 @@ std::vector<Accel> SAHSet(const Scene &scene, int leafSize) {
     return v;
 }
 
-// ex-6.13: BVHAccel's HLBVH tree, its primitives checked to be in Morton
+// ex-6.6: BVHAccel's HLBVH tree, its primitives checked to be in Morton
 // order, traced by a TreeWalker and by a FastBVHAccel that adopts it; and
 // FastBVHAccel with the HLBVH, which uses BVHAccel's builder.
 std::vector<Accel> HLBVHSet(const Scene &scene, int leafSize) {
@@ -879,7 +879,7 @@ TEST(BVHDegenerate, NoPrimitives) {
 
 // A tree of a single leaf: BVHAccel's own traversal and its SAH builder
 // never reach an exercise's code then (the HLBVH does: its test is
-// Ex6_13_HLBVH.DegenerateScenes).
+// Ex6_6_HLBVH.DegenerateScenes).
 TEST(BVHDegenerate, OnePrimitive) {
     CheckOnePrimitive([](const Scene &scene, int leafSize) {
         std::vector<Accel> v = Plain(kPlainMethods)(scene, leafSize);
@@ -1223,13 +1223,13 @@ TEST(ExerciseCalls, AnswersThatAreNotATreeAreRefused) {
 }
 
 // ---------------------------------------------------------------------------
-// Exercise 6.12: choosing the SAH split.
+// Exercise 6.5: choosing the SAH split.
 
-EXERCISE_TEST(Ex6_12_SAH, RandomScenes) {
+EXERCISE_TEST(Ex6_5_SAH, RandomScenes) {
     RunRandomScenes(SAHSet, 601, kExerciseRandomScenes);
 }
 
-EXERCISE_TEST(Ex6_12_SAH, DegenerateScenes) {
+EXERCISE_TEST(Ex6_5_SAH, DegenerateScenes) {
     CheckAllCentroidsEqual(SAHSet);
     CheckZeroExtentBoxes(SAHSet);
     CheckNaNAndInfiniteBounds(SAHSet);
@@ -1238,7 +1238,7 @@ EXERCISE_TEST(Ex6_12_SAH, DegenerateScenes) {
 
 // Small scenes whose SAH decisions follow from the costs by hand (areas of
 // unit cubes and their unions; c_T = 1/8, c_I = 1).
-EXERCISE_TEST(Ex6_12_SAH, SmallScenesWithKnownDecisions) {
+EXERCISE_TEST(Ex6_5_SAH, SmallScenesWithKnownDecisions) {
     // Cubes at 0, 1.5 and 10: splitting {0, 1.5} from {10} costs
     // 1/8 + (2 * 12 + 1 * 6) / 46 = 0.777, splitting {0} from the rest
     // 1/8 + (6 + 2 * 40) / 46 = 1.995, a leaf 3. The far cube is split off
@@ -1298,7 +1298,7 @@ EXERCISE_TEST(Ex6_12_SAH, SmallScenesWithKnownDecisions) {
 // Random scenes of boxes (clustered, flat, on a line, repeated) and leaf
 // sizes; every decision of every tree is checked against the cost model.
 // The scenes must make the SAH decide many times, and choose leaves too.
-EXERCISE_TEST(Ex6_12_SAH, DecisionsFollowTheCostModel) {
+EXERCISE_TEST(Ex6_5_SAH, DecisionsFollowTheCostModel) {
     std::mt19937_64 rng(calls::Seed(6121));
     const int leafSizes[] = {1, 2, 3, 4, 6, 8, 16, 255};
     const int scenes = calls::Cases(1000, 300);
@@ -1325,9 +1325,9 @@ EXERCISE_TEST(Ex6_12_SAH, DecisionsFollowTheCostModel) {
 }
 
 // ---------------------------------------------------------------------------
-// Exercise 6.13: sorting along the Morton curve.
+// Exercise 6.6: sorting along the Morton curve.
 
-EXERCISE_TEST(Ex6_13_MortonCodes, LeftShift3SpreadsTheBits) {
+EXERCISE_TEST(Ex6_6_MortonCodes, LeftShift3SpreadsTheBits) {
     for (uint32_t x = 0; x < 1024; ++x) {
         uint32_t expected = 0;
         for (int i = 0; i < 10; ++i)
@@ -1338,7 +1338,7 @@ EXERCISE_TEST(Ex6_13_MortonCodes, LeftShift3SpreadsTheBits) {
     EXPECT_EQ(ex::LeftShift3(0xffffffffu), ex::LeftShift3(1023));
 }
 
-EXERCISE_TEST(Ex6_13_MortonCodes, EncodeInterleavesCoordinates) {
+EXERCISE_TEST(Ex6_6_MortonCodes, EncodeInterleavesCoordinates) {
     std::mt19937_64 rng(calls::Seed(616));
     const int cases = calls::Cases(100000, 20000);
     for (int i = 0; i < cases; ++i) {
@@ -1364,11 +1364,11 @@ EXERCISE_TEST(Ex6_13_MortonCodes, EncodeInterleavesCoordinates) {
     EXPECT_EQ(ex::EncodeMorton3(Vector3f(-1, nan, 2000)), 0x24924924u);
 }
 
-EXERCISE_TEST(Ex6_13_HLBVH, RandomScenes) {
+EXERCISE_TEST(Ex6_6_HLBVH, RandomScenes) {
     RunRandomScenes(HLBVHSet, 602, kExerciseRandomScenes);
 }
 
-EXERCISE_TEST(Ex6_13_HLBVH, DegenerateScenes) {
+EXERCISE_TEST(Ex6_6_HLBVH, DegenerateScenes) {
     CheckOnePrimitive(HLBVHSet);
     CheckAllCentroidsEqual(HLBVHSet);
     CheckZeroExtentBoxes(HLBVHSet);
@@ -1379,7 +1379,7 @@ EXERCISE_TEST(Ex6_13_HLBVH, DegenerateScenes) {
 // Scenes of up to a few thousand boxes, whose codes differ in every group
 // of bits that a pass of the radix sort handles, and scenes where many
 // codes coincide: the primitives of every tree must be in code order.
-EXERCISE_TEST(Ex6_13_HLBVH, PrimitivesAreInMortonOrder) {
+EXERCISE_TEST(Ex6_6_HLBVH, PrimitivesAreInMortonOrder) {
     std::mt19937_64 rng(calls::Seed(6131));
     const int scenes = calls::Cases(60, 30);
     int distinct = 0;
@@ -1408,13 +1408,13 @@ EXERCISE_TEST(Ex6_13_HLBVH, PrimitivesAreInMortonOrder) {
 }
 
 // ---------------------------------------------------------------------------
-// Exercise 6.14: near child first.
+// Exercise 6.7: near child first.
 
-EXERCISE_TEST(Ex6_14_Traversal, RandomScenes) {
+EXERCISE_TEST(Ex6_7_Traversal, RandomScenes) {
     RunRandomScenes(TraversalSet, 605, kExerciseRandomScenes);
 }
 
-EXERCISE_TEST(Ex6_14_Traversal, DegenerateScenes) {
+EXERCISE_TEST(Ex6_7_Traversal, DegenerateScenes) {
     CheckAllCentroidsEqual(TraversalSet);
     CheckZeroExtentBoxes(TraversalSet);
     CheckNaNAndInfiniteBounds(TraversalSet);
@@ -1428,7 +1428,7 @@ EXERCISE_TEST(Ex6_14_Traversal, DegenerateScenes) {
 // The other order tests every cube. Only the first cube is solid, so that
 // IntersectP() too tests more than one cube in the wrong order. The rays
 // drift slowly across the other two axes, in every combination of signs.
-EXERCISE_TEST(Ex6_14_Traversal, NearChildFirstOnRowsOfCubes) {
+EXERCISE_TEST(Ex6_7_Traversal, NearChildFirstOnRowsOfCubes) {
     std::vector<int> log;
     for (int n : {2, 5, 16}) {
         for (int axis = 0; axis < 3; ++axis) {
@@ -1476,7 +1476,7 @@ EXERCISE_TEST(Ex6_14_Traversal, NearChildFirstOnRowsOfCubes) {
 
 // The fast BVH over triangles gives bit for bit the hits of BVHAccel, on a
 // closed mesh (a subdivided octahedron) and rays from all directions.
-EXERCISE_TEST(Ex6_14_Traversal, SameHitsAsFastBVHAccelOnAClosedMesh) {
+EXERCISE_TEST(Ex6_7_Traversal, SameHitsAsFastBVHAccelOnAClosedMesh) {
     std::vector<Point3f> p;
     std::vector<int> idx;
     ClosedMesh(5, &p, &idx);

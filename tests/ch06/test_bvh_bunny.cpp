@@ -1,6 +1,6 @@
 // Chapter 6: the Stanford bunny of data/bunny.ply, subdivided in code, traced
 // by every BVH and by brute force on a subset of camera and incoherent rays.
-// The suites Ex6_12_SAHBunny, Ex6_13_HLBVHBunny and Ex6_14_TraversalBunny
+// The suites Ex6_5_SAHBunny, Ex6_6_HLBVHBunny and Ex6_7_TraversalBunny
 // test the chapter's graded exercises on it, through the exercise calls (the
 // worker gets the subdivided mesh as values); BunnyTest uses no exercise's
 // code (test_bvh.cpp explains which accelerators that leaves).
@@ -193,7 +193,7 @@ TEST(BunnyTest, BaseMeshIsThePackagedBunny) {
     EXPECT_EQ(bunny->scene.prims.size(), 4u * 3674u);
 }
 
-// FastBVHAccel's own SAH builder; BVHAccel's is Exercise 6.12's.
+// FastBVHAccel's own SAH builder; BVHAccel's is Exercise 6.5's.
 TEST(BunnyTest, SAH) {
     const Bunny *bunny = TheBunny();
     ASSERT_BUNNY(bunny);
@@ -202,7 +202,7 @@ TEST(BunnyTest, SAH) {
 }
 
 // BVHAccel's trees, traced by a FastBVHAccel that adopts them (BVHAccel's
-// own traversal is Exercise 6.14's).
+// own traversal is Exercise 6.7's).
 TEST(BunnyTest, Middle) {
     const Bunny *bunny = TheBunny();
     ASSERT_BUNNY(bunny);
@@ -228,7 +228,7 @@ TEST(BunnyTest, EqualCounts) {
 // BVHAccel's SAH tree, four primitives per leaf as in the benchmark: every
 // decision follows the cost model, and the tree, traced without BVHAccel's
 // traversal, finds the hits that brute force finds.
-EXERCISE_TEST(Ex6_12_SAHBunny, TreeFollowsTheCostModel) {
+EXERCISE_TEST(Ex6_5_SAHBunny, TreeFollowsTheCostModel) {
     const Bunny *bunny = TheBunny();
     ASSERT_BUNNY(bunny);
     for (int leafSize : {1, 4}) {
@@ -243,7 +243,7 @@ EXERCISE_TEST(Ex6_12_SAHBunny, TreeFollowsTheCostModel) {
 // BVHAccel's HLBVH tree: its primitives are in Morton order, and it finds
 // the hits that brute force finds, traced without BVHAccel's traversal and
 // by FastBVHAccel, which builds with BVHAccel's HLBVH builder.
-EXERCISE_TEST(Ex6_13_HLBVHBunny, TreeFollowsTheCurve) {
+EXERCISE_TEST(Ex6_6_HLBVHBunny, TreeFollowsTheCurve) {
     const Bunny *bunny = TheBunny();
     ASSERT_BUNNY(bunny);
     auto bvh = std::make_shared<ex::BVHAccel>(bunny->scene, 4,
@@ -255,7 +255,7 @@ EXERCISE_TEST(Ex6_13_HLBVHBunny, TreeFollowsTheCurve) {
           "FastBVHAccel HLBVH");
 }
 
-EXERCISE_TEST(Ex6_14_TraversalBunny, MiddleAndEqualCounts) {
+EXERCISE_TEST(Ex6_7_TraversalBunny, MiddleAndEqualCounts) {
     const Bunny *bunny = TheBunny();
     ASSERT_BUNNY(bunny);
     Check(*bunny, ex::BVHAccel(bunny->scene, 4, SplitMethod::Middle),
@@ -272,7 +272,7 @@ EXERCISE_TEST(Ex6_14_TraversalBunny, MiddleAndEqualCounts) {
 // as many. Visiting the first or the second child first, whatever the
 // ray's direction, tests about twice and two and a half times as many.
 // (The worker reports the triangles its traversal tested.)
-EXERCISE_TEST(Ex6_14_TraversalBunny, TestsFewTriangles) {
+EXERCISE_TEST(Ex6_7_TraversalBunny, TestsFewTriangles) {
     const Bunny *bunny = TheBunny();
     ASSERT_BUNNY(bunny);
     int64_t count = 0;

@@ -10,7 +10,7 @@
 #   make html       the web edition, build/html/ (tools/html.mk)
 #   make tangle     refresh tangled/, the readable tangle that is committed
 #   make lint       check the chapters' noweb/Markdown format
-#   make bench      chapter 6's BVH benchmark (tools/bench.mk): table + JSON
+#   make bench      the BVH benchmark of Appendix A (tools/bench.mk): table + JSON
 #   make figures    render the book's figures into figures/ (tools/figures.mk);
 #                   make check-figures compares them with the committed ones
 #   make exercises  student and solution kits; more in tools/exercises.mk

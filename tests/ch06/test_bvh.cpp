@@ -642,10 +642,3 @@ EXERCISE_TEST(Ex6_7_Traversal, SameHitsAsTreeWalkerOnAClosedMesh) {
         EXPECT_GT(hits, rays / 2);
     }
 }
-
-// EnteredChildren() builds the traversal's mask of entered children, with
-// a vector instruction where the processor has one (Section 6.8.7) and
-// with the portable loop elsewhere; in this build, float takes the first
-// where there is SSE2 and double always the second. Both must set bit c
-// exactly when !(tNear[c] > tFar[c]), so that a NaN on either side keeps
-// the child: every pair of special values in every lane, and random lanes.

@@ -471,6 +471,13 @@ TEST(FastBVHAccel, DegenerateTrianglesStayOutOfTheFastPath) {
     }
 }
 
+// EnteredChildren() builds the traversal's mask of entered children, with
+// a vector instruction where the processor has one (chapter 7, "Four Boxes
+// at Once") and with the portable loop elsewhere; in this build, float
+// takes the first where there is SSE2 and double always the second. Both
+// must set bit c exactly when !(tNear[c] > tFar[c]), so that a NaN on
+// either side keeps the child: every pair of special values in every lane,
+// and random lanes.
 template <typename T>
 void CheckEnteredChildren() {
     const T inf = std::numeric_limits<T>::infinity();
@@ -573,7 +580,7 @@ TEST(FastBVHAccel, RaysWithNaNAndInfinityEndAndAgreeAcrossTrees) {
 
 // FastBVHAccel traverses with one instance of its loop per octant of the
 // ray's direction, each with the near and far planes of its octant built in
-// (chapter 6, "Fast Traversal"). Every octant, with zero components of either sign (whose
+// (chapter 7, "Fast Traversal"). Every octant, with zero components of either sign (whose
 // sign the reciprocal decides), must find what brute force finds.
 TEST(FastBVHAccel, EveryOctantWithSignedZerosAgreesWithBruteForce) {
     std::mt19937_64 rng(6177);

@@ -547,4 +547,48 @@ inline void CheckExponentiallySpacedCentroids(const AccelSet &set) {
 // clusters, on a plane (boxes flat in z), on a line (segments along x, of
 // zero area), many copies of a few, or large boxes around nearly the same
 
+// The degenerate scenes above that take a set, each with the set's
+// accelerators.
+inline void CheckDegenerateScenes(const AccelSet &set) {
+    CheckAllCentroidsEqual(set);
+    CheckZeroExtentBoxes(set);
+    CheckNaNAndInfiniteBounds(set);
+    CheckExponentiallySpacedCentroids(set);
+}
+
+// A closed mesh, a subdivided octahedron (ClosedMesh() of bvh_checks.h).
+inline Scene ClosedMeshScene(int levels) {
+    std::vector<Point3f> p;
+    std::vector<int> idx;
+    ClosedMesh(levels, &p, &idx);
+    Scene scene;
+    scene.AddTriangles(p, idx);
+    return scene;
+}
+
+// Two accelerators over a closed mesh around the origin agree bit for bit
+// on rays aimed near the origin and rays in every direction: the same hits,
+// at the same distances, and IntersectP() agrees with Intersect().
+inline void ExpectSameHitsOnAClosedMesh(const Primitive &a, const Primitive &b,
+                                        std::mt19937_64 &rng, int rays) {
+    int hits = 0;
+    for (int i = 0; i < rays; ++i) {
+        Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 3);
+        Ray ray(o, RandomPoint(rng, Point3f(0, 0, 0), 0.5) - o);
+        if (i % 3 == 0) ray.d = RandomDirection(rng);
+        Ray r1 = ray, r2 = ray;
+        SurfaceInteraction s1, s2;
+        bool h1 = a.Intersect(r1, &s1), h2 = b.Intersect(r2, &s2);
+        ASSERT_EQ(h1, h2) << ray;
+        EXPECT_EQ(a.IntersectP(ray), h1);
+        EXPECT_EQ(b.IntersectP(ray), h2);
+        if (h1) {
+            ++hits;
+            EXPECT_EQ(r1.tMax, r2.tMax) << ray;
+        }
+    }
+    // Rays aimed near the origin hit, unless they start inside.
+    EXPECT_GT(hits, rays / 2);
+}
+
 }  // namespace lrt_test

@@ -364,10 +364,7 @@ EXERCISE_TEST(Ex6_5_SAH, RandomScenes) {
 }
 
 EXERCISE_TEST(Ex6_5_SAH, DegenerateScenes) {
-    CheckAllCentroidsEqual(SAHSet);
-    CheckZeroExtentBoxes(SAHSet);
-    CheckNaNAndInfiniteBounds(SAHSet);
-    CheckExponentiallySpacedCentroids(SAHSet);
+    CheckDegenerateScenes(SAHSet);
 }
 
 // Small scenes whose SAH decisions follow from the costs by hand (areas of
@@ -504,10 +501,7 @@ EXERCISE_TEST(Ex6_6_HLBVH, RandomScenes) {
 
 EXERCISE_TEST(Ex6_6_HLBVH, DegenerateScenes) {
     CheckOnePrimitive(HLBVHSet);
-    CheckAllCentroidsEqual(HLBVHSet);
-    CheckZeroExtentBoxes(HLBVHSet);
-    CheckNaNAndInfiniteBounds(HLBVHSet);
-    CheckExponentiallySpacedCentroids(HLBVHSet);
+    CheckDegenerateScenes(HLBVHSet);
 }
 
 // Scenes of up to a few thousand boxes, whose codes differ in every group
@@ -549,10 +543,7 @@ EXERCISE_TEST(Ex6_7_Traversal, RandomScenes) {
 }
 
 EXERCISE_TEST(Ex6_7_Traversal, DegenerateScenes) {
-    CheckAllCentroidsEqual(TraversalSet);
-    CheckZeroExtentBoxes(TraversalSet);
-    CheckNaNAndInfiniteBounds(TraversalSet);
-    CheckExponentiallySpacedCentroids(TraversalSet);
+    CheckDegenerateScenes(TraversalSet);
 }
 
 // Unit cubes in a row along an axis, 2 apart, each a primitive of a tree
@@ -612,33 +603,12 @@ EXERCISE_TEST(Ex6_7_Traversal, NearChildFirstOnRowsOfCubes) {
 // same kind of tree, on a closed mesh (a subdivided octahedron) and rays
 // from all directions.
 EXERCISE_TEST(Ex6_7_Traversal, SameHitsAsTreeWalkerOnAClosedMesh) {
-    std::vector<Point3f> p;
-    std::vector<int> idx;
-    ClosedMesh(5, &p, &idx);
-    Scene scene;
-    scene.AddTriangles(p, idx);
+    Scene scene = ClosedMeshScene(5);
     std::mt19937_64 rng(calls::Seed(615));
-    const int rays = calls::Cases(20000, 4000);
     for (SplitMethod m : {SplitMethod::Middle, SplitMethod::EqualCounts}) {
         ex::BVHAccel bvh(scene, 4, m);
         TreeWalker walker(std::make_shared<BVHAccel>(scene.prims, 4, m));
-        int hits = 0;
-        for (int i = 0; i < rays; ++i) {
-            Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 3);
-            Ray ray(o, RandomPoint(rng, Point3f(0, 0, 0), 0.5) - o);
-            if (i % 3 == 0) ray.d = RandomDirection(rng);
-            Ray r1 = ray, r2 = ray;
-            SurfaceInteraction s1, s2;
-            bool h1 = bvh.Intersect(r1, &s1), h2 = walker.Intersect(r2, &s2);
-            ASSERT_EQ(h1, h2) << ray;
-            EXPECT_EQ(bvh.IntersectP(ray), h1);
-            EXPECT_EQ(walker.IntersectP(ray), h2);
-            if (h1) {
-                ++hits;
-                EXPECT_EQ(r1.tMax, r2.tMax) << ray;
-            }
-        }
-        // Rays aimed near the origin hit, unless they start inside.
-        EXPECT_GT(hits, rays / 2);
+        ExpectSameHitsOnAClosedMesh(bvh, walker, rng,
+                                    calls::Cases(20000, 4000));
     }
 }

@@ -231,21 +231,7 @@ TEST(FastBVHDegenerate, ArgumentChecks) {
     EXPECT_EQ(FastBVHAccel(scene.prims, 1000).MaxPrimsInNode(), 255);
 }
 
-TEST(FastBVHDegenerate, AllCentroidsEqual) {
-    CheckAllCentroidsEqual(Fast(kAllMethods));
-}
-
-TEST(FastBVHDegenerate, ZeroExtentBoxes) {
-    CheckZeroExtentBoxes(Fast(kAllMethods));
-}
-
-TEST(FastBVHDegenerate, NaNAndInfiniteBounds) {
-    CheckNaNAndInfiniteBounds(Fast(kAllMethods));
-}
-
-TEST(FastBVHDegenerate, ExponentiallySpacedCentroidsStayShallow) {
-    CheckExponentiallySpacedCentroids(Fast(kAllMethods));
-}
+TEST(FastBVHDegenerate, Scenes) { CheckDegenerateScenes(Fast(kAllMethods)); }
 
 // FastBVHAccel reports the SAH cost of its tree as BVHAccel does, with
 // c_T = c_I = 1: for a two-level tree, the definition of the tree cost.
@@ -261,35 +247,12 @@ TEST(FastBVHAccel, StatsSAHCost) {
 // The fast BVH over triangles gives bit for bit the hits of BVHAccel, on a
 // closed mesh (a subdivided octahedron) and rays from all directions.
 TEST(FastBVHAccel, SameHitsAsBVHAccelOnAClosedMesh) {
-    std::vector<Point3f> p;
-    std::vector<int> idx;
-    ClosedMesh(5, &p, &idx);
-    Scene scene;
-    scene.AddTriangles(p, idx);
+    Scene scene = ClosedMeshScene(5);
     std::mt19937_64 rng(615);
-    const int rays = 20000;
-    for (SplitMethod m : kMethods) {
-        BVHAccel bvh(scene.prims, 4, m);
-        FastBVHAccel fast(scene.prims, 8, m);
-        int hits = 0;
-        for (int i = 0; i < rays; ++i) {
-            Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 3);
-            Ray ray(o, RandomPoint(rng, Point3f(0, 0, 0), 0.5) - o);
-            if (i % 3 == 0) ray.d = RandomDirection(rng);
-            Ray r1 = ray, r2 = ray;
-            SurfaceInteraction s1, s2;
-            bool h1 = bvh.Intersect(r1, &s1), h2 = fast.Intersect(r2, &s2);
-            ASSERT_EQ(h1, h2) << ray;
-            EXPECT_EQ(bvh.IntersectP(ray), h1);
-            EXPECT_EQ(fast.IntersectP(ray), h2);
-            if (h1) {
-                ++hits;
-                EXPECT_EQ(r1.tMax, r2.tMax) << ray;
-            }
-        }
-        // Rays aimed near the origin hit, unless they start inside.
-        EXPECT_GT(hits, rays / 2);
-    }
+    for (SplitMethod m : kMethods)
+        ExpectSameHitsOnAClosedMesh(BVHAccel(scene.prims, 4, m),
+                                    FastBVHAccel(scene.prims, 8, m), rng,
+                                    20000);
 }
 // Every member of two interactions, compared exactly.
 bool SameInteraction(const SurfaceInteraction &a, const SurfaceInteraction &b) {

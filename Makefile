@@ -10,7 +10,7 @@
 #   make html       the web edition, build/html/ (tools/html.mk)
 #   make tangle     refresh tangled/, the readable tangle that is committed
 #   make lint       check the chapters' noweb/Markdown format
-#   make bench      chapter 6's BVH benchmark (tools/bench.mk): table + JSON
+#   make bench      the BVH benchmark of Appendix A (tools/bench.mk): table + JSON
 #   make figures    render the book's figures into figures/ (tools/figures.mk);
 #                   make check-figures compares them with the committed ones
 #   make exercises  student and solution kits; more in tools/exercises.mk
@@ -70,9 +70,9 @@ lib: $(LINTED)
 # The code as of chapter N is the tangle of chapters 1..N; it must compile and
 # pass the tests of chapters 1..N, so no chapter leans on a later one. The
 # tools' own tests (tests/tools) run with the whole set, once: they do not
-# depend on FLOAT or SANITIZE. The appendix (08) is a program, the benchmark,
+# depend on FLOAT or SANITIZE. The appendix (09) is a program, the benchmark,
 # whose tests run it from Python.
-PYTHON_TESTS_08 := tests/tools/test_bench.py
+PYTHON_TESTS_09 := tests/tools/test_bench.py
 test: $(LINTED)
 	@bins=(); \
 	for n in $(PREFIXES); do \

@@ -1,5 +1,5 @@
 # make bench: the BVH benchmark of Appendix A, bench/bvhbench.cpp, which
-# chapters/08-bvh-benchmark.md tangles like the library (roots outside lrt/
+# chapters/09-bvh-benchmark.md tangles like the library (roots outside lrt/
 # are not part of liblrt.a). It measures one configuration, a compiler and
 # its optimization flags:
 #

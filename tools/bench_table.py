@@ -9,7 +9,7 @@ The first form writes a whitespace-separated table for a plot: one row per
 mesh (sorted by triangle count) with, for the SAH trees of the first and the
 final version, build time in ms and Mrays/s for the camera rays and for the
 incoherent rays. Its first line names the columns, which the book's plot
-(pgfplots, chapter 6) reads by name.
+(pgfplots, chapter 7) reads by name.
 
 The second compares configurations, one JSON file (one run of `make bench`)
 each: a Markdown table with one row per file, named by the compiler command

@@ -1,4 +1,4 @@
-# make figures: the book's rendered figures. Chapter 7 tangles the figure
+# make figures: the book's rendered figures. Chapter 8 tangles the figure
 # program, render/figures.cpp, like the benchmark of Appendix A (roots outside
 # lrt/ are not part of liblrt.a). The rule builds the library as of the last
 # chapter, always with Float as float (the precision the figures show, whatever

@@ -1,4 +1,4 @@
-// bench/bvhbench.cpp: tangled from chapters/08-bvh-benchmark.md. Edit the chapter, not this file.
+// bench/bvhbench.cpp: tangled from chapters/09-bvh-benchmark.md. Edit the chapter, not this file.
 #include "lrt/lrt.h"
 
 #include <benchmark/benchmark.h>

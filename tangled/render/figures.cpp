@@ -1,4 +1,4 @@
-// render/figures.cpp: tangled from chapters/07-rendering.md. Edit the chapter, not this file.
+// render/figures.cpp: tangled from chapters/08-rendering.md. Edit the chapter, not this file.
 #include "lrt/lrt.h"
 
 #include <algorithm>

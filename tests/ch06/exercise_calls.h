@@ -1,5 +1,5 @@
-// Chapter 6's exercise calls (tests/calls/calls.h): the tests of ex-6.12,
-// ex-6.13 and ex-6.14 reach BVHAccel's builders and traversal, and the Morton
+// Chapter 6's exercise calls (tests/calls/calls.h): the tests of ex-6.5,
+// ex-6.6 and ex-6.7 reach BVHAccel's builders and traversal, and the Morton
 // code functions, only through these.
 //
 // A test describes its scene as values: an ex::Scene holds the test's own
@@ -11,8 +11,8 @@
 // its distance, the index of the primitive hit and, if asked, the indices of
 // the primitives tested, in order.
 //
-// ex::BVHAccel and ex::FastBVHAccel turn these into Primitives with the
-// accessors of lrt::BVHAccel, so that the tests read as before: they map the
+// ex::BVHAccel turns these into a Primitive with the accessors of
+// lrt::BVHAccel, so that the tests read as before: they map the
 // indices back to the test's own primitives and refuse (throw on) an answer
 // whose indices do not describe a tree over the scene.
 
@@ -158,19 +158,12 @@ struct SceneValue {
 // What the worker answers about an accelerator it built and keeps.
 struct BuiltBVH {
     calls::Handle handle;
-    std::vector<LinearBVHNode> nodes;  // BVHAccel's tree; none for FastBVHAccel
+    std::vector<LinearBVHNode> nodes;  // BVHAccel's tree
     std::vector<int> order;  // Primitives(), as indices into the scene
     BVHStats stats;
     int maxPrimsInNode;
     Bounds3f worldBound;
     LRT_FIELDS(handle, nodes, order, stats, maxPrimsInNode, worldBound)
-};
-
-// Which accelerator BuildBVH builds, and which traversal TraceRay uses.
-enum class Accelerator : uint8_t { BVHAccel, FastBVHAccel };
-enum class Traversal : uint8_t {
-    Own,                    // the accelerator's own Intersect()/IntersectP()
-    AdoptedByFastBVHAccel,  // a FastBVHAccel that adopts a BVHAccel's tree
 };
 
 // What TraceRay answers: for Intersect(), whether the ray hit, its tMax
@@ -241,8 +234,7 @@ inline std::vector<std::shared_ptr<Primitive>> MakeMesh(
 }
 
 // A primitive of the worker's scene that writes its index into a log at
-// every test. (Only where the test asks for the log: FastBVHAccel treats
-// triangles specially only when they are plain GeometricPrimitives.)
+// every test (only where the test asks for the log).
 class LoggedPrimitive : public Primitive {
   public:
     LoggedPrimitive(std::shared_ptr<Primitive> p, int index,
@@ -271,7 +263,6 @@ struct KeptAccelerator {
     std::unordered_map<const Primitive *, int> index;
     std::vector<int> tested;  // the log of the current query
     std::shared_ptr<lrt::BVHAccel> bvh;
-    std::shared_ptr<lrt::FastBVHAccel> fast;  // built, or adopting bvh
 
     int IndexOf(const Primitive *p) const {
         auto it = index.find(p);
@@ -324,49 +315,29 @@ inline void MakeScene(const SceneValue &scene, bool log,
     }
 }
 
-// Builds a BVHAccel or a FastBVHAccel over the scene and keeps it.
+// Builds a BVHAccel over the scene and keeps it.
 inline BuiltBVH BuildBVH(SceneValue scene, int maxPrimsInNode,
-                         lrt::BVHAccel::SplitMethod method,
-                         Accelerator accelerator, bool log) {
+                         lrt::BVHAccel::SplitMethod method, bool log) {
     auto kept = std::make_shared<KeptAccelerator>();
     MakeScene(scene, log, kept.get());
     BuiltBVH built;
-    const std::vector<std::shared_ptr<Primitive>> *ordered;
-    if (accelerator == Accelerator::BVHAccel) {
-        kept->bvh = std::make_shared<lrt::BVHAccel>(kept->prims, maxPrimsInNode,
-                                                    method);
-        built.nodes = kept->bvh->Nodes();
-        ordered = &kept->bvh->Primitives();
-        built.stats = kept->bvh->Stats();
-        built.maxPrimsInNode = kept->bvh->MaxPrimsInNode();
-        built.worldBound = kept->bvh->WorldBound();
-    } else {
-        kept->fast = std::make_shared<lrt::FastBVHAccel>(
-            kept->prims, maxPrimsInNode, method);
-        ordered = &kept->fast->Primitives();
-        built.stats = kept->fast->Stats();
-        built.maxPrimsInNode = kept->fast->MaxPrimsInNode();
-        built.worldBound = kept->fast->WorldBound();
-    }
-    for (const auto &p : *ordered)
+    kept->bvh =
+        std::make_shared<lrt::BVHAccel>(kept->prims, maxPrimsInNode, method);
+    built.nodes = kept->bvh->Nodes();
+    built.stats = kept->bvh->Stats();
+    built.maxPrimsInNode = kept->bvh->MaxPrimsInNode();
+    built.worldBound = kept->bvh->WorldBound();
+    for (const auto &p : kept->bvh->Primitives())
         built.order.push_back(kept->IndexOf(p.get()));
     built.handle = calls::Keep(kept);
     return built;
 }
 
 // Intersect() (or, with anyHit, IntersectP()) of a kept accelerator.
-inline TraceResult TraceRay(calls::Handle accelerator, Traversal traversal,
-                            Ray ray, bool anyHit, bool log) {
+inline TraceResult TraceRay(calls::Handle accelerator, Ray ray, bool anyHit,
+                            bool log) {
     KeptAccelerator &kept = calls::Find<KeptAccelerator>(accelerator);
-    const Primitive *accel =
-        kept.bvh ? static_cast<const Primitive *>(kept.bvh.get())
-                 : kept.fast.get();
-    if (traversal == Traversal::AdoptedByFastBVHAccel) {
-        if (!kept.bvh) throw std::invalid_argument("no BVHAccel to adopt");
-        if (!kept.fast)
-            kept.fast = std::make_shared<lrt::FastBVHAccel>(*kept.bvh);
-        accel = kept.fast.get();
-    }
+    const Primitive *accel = kept.bvh.get();
     kept.tested.clear();
     TraceResult result{false, ray.tMax, -1, {}};
     if (anyHit) {
@@ -487,9 +458,8 @@ class KeptInWorker {
     }
     // Intersect() (isect given) or IntersectP() in the worker; notes the
     // tests of the test's primitives that keep notes.
-    bool Trace(Traversal traversal, const Ray &ray,
-               SurfaceInteraction *isect) const {
-        TraceResult r = ex::TraceRay(handle, traversal, ray, !isect, log);
+    bool Trace(const Ray &ray, SurfaceInteraction *isect) const {
+        TraceResult r = ex::TraceRay(handle, ray, !isect, log);
         for (int k : r.tested) {
             auto notes = dynamic_cast<const NotesTests *>(At(k).get());
             if (notes) notes->NoteTest();
@@ -554,7 +524,7 @@ class BVHAccel : public Primitive {
     explicit BVHAccel(const Scene &scene, int maxPrimsInNode = 1,
                       SplitMethod splitMethod = SplitMethod::SAH)
         : built(ex::BuildBVH(scene.value, maxPrimsInNode, splitMethod,
-                             Accelerator::BVHAccel, KeepsNotes(scene))),
+                             KeepsNotes(scene))),
           kept(std::make_shared<KeptInWorker>(built.handle, scene.prims,
                                               KeepsNotes(scene))) {
         for (int k : built.order) primitives.push_back(kept->At(k));
@@ -562,63 +532,12 @@ class BVHAccel : public Primitive {
     }
     Bounds3f WorldBound() const override { return built.worldBound; }
     bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override {
-        return kept->Trace(Traversal::Own, ray, isect);
+        return kept->Trace(ray, isect);
     }
     bool IntersectP(const Ray &ray) const override {
-        return kept->Trace(Traversal::Own, ray, nullptr);
+        return kept->Trace(ray, nullptr);
     }
     const std::vector<LinearBVHNode> &Nodes() const { return built.nodes; }
-    const std::vector<std::shared_ptr<Primitive>> &Primitives() const {
-        return primitives;
-    }
-    int MaxPrimsInNode() const { return built.maxPrimsInNode; }
-    BVHStats Stats() const { return built.stats; }
-
-    // The same tree, traced by a FastBVHAccel that adopts it in the worker.
-    class Adopted : public Primitive {
-      public:
-        explicit Adopted(const BVHAccel &bvh)
-            : bounds(bvh.WorldBound()), kept(bvh.kept) {}
-        Bounds3f WorldBound() const override { return bounds; }
-        bool Intersect(const Ray &ray,
-                       SurfaceInteraction *isect) const override {
-            return kept->Trace(Traversal::AdoptedByFastBVHAccel, ray, isect);
-        }
-        bool IntersectP(const Ray &ray) const override {
-            return kept->Trace(Traversal::AdoptedByFastBVHAccel, ray, nullptr);
-        }
-
-      private:
-        Bounds3f bounds;
-        std::shared_ptr<const KeptInWorker> kept;
-    };
-
-  private:
-    BuiltBVH built;
-    std::shared_ptr<const KeptInWorker> kept;
-    std::vector<std::shared_ptr<Primitive>> primitives;
-};
-
-// The worker's FastBVHAccel over a scene, built with one of BVHAccel's split
-// methods (the HLBVH uses BVHAccel's builder); its nodes stay in the worker.
-class FastBVHAccel : public Primitive {
-  public:
-    using SplitMethod = lrt::BVHAccel::SplitMethod;
-    FastBVHAccel(const Scene &scene, int maxPrimsInNode,
-                 SplitMethod splitMethod)
-        : built(ex::BuildBVH(scene.value, maxPrimsInNode, splitMethod,
-                             Accelerator::FastBVHAccel, false)),
-          kept(std::make_shared<KeptInWorker>(built.handle, scene.prims,
-                                              false)) {
-        for (int k : built.order) primitives.push_back(kept->At(k));
-    }
-    Bounds3f WorldBound() const override { return built.worldBound; }
-    bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override {
-        return kept->Trace(Traversal::Own, ray, isect);
-    }
-    bool IntersectP(const Ray &ray) const override {
-        return kept->Trace(Traversal::Own, ray, nullptr);
-    }
     const std::vector<std::shared_ptr<Primitive>> &Primitives() const {
         return primitives;
     }

@@ -2,6 +2,7 @@
 // and Aggregate. Oracles: the shape's own intersection routine, and the same
 // shape placed in world space by its ObjectToWorld transformation.
 
+#include "bvh_checks.h"
 #include "lrt/lrt.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include <vector>
 
 using namespace lrt;
+using lrt_test::TreeWalker;
 
 namespace {
 
@@ -160,8 +162,8 @@ TEST(TransformedPrimitive, DistancesAreComparableWithWorldSpace) {
     }
 }
 
-// Instances of an aggregate: a BVH over a small mesh, placed twice. (A
-// FastBVHAccel: BVHAccel's traversal and SAH builder hold exercises.)
+// Instances of an aggregate: a BVH over a small mesh, placed twice. (Its
+// trees are traced by TreeWalker: BVHAccel's traversal holds an exercise.)
 TEST(TransformedPrimitive, InstancesOfAnAggregate) {
     Transform identity;
     std::vector<int> indices;
@@ -178,13 +180,15 @@ TEST(TransformedPrimitive, InstancesOfAnAggregate) {
                                      nullptr, nullptr, nullptr);
     std::vector<std::shared_ptr<Primitive>> prims;
     for (auto &s : shapes) prims.push_back(std::make_shared<GeometricPrimitive>(s));
-    auto model = std::make_shared<FastBVHAccel>(prims, 2);
+    auto model = std::make_shared<TreeWalker>(std::make_shared<BVHAccel>(
+        prims, 2, BVHAccel::SplitMethod::Middle));
     Transform t1 = Translate(Vector3f(-3, 0, 0)),
               t2 = Translate(Vector3f(3, 0, 0)) * RotateX(180);
     std::vector<std::shared_ptr<Primitive>> scene = {
         std::make_shared<TransformedPrimitive>(model, t1),
         std::make_shared<TransformedPrimitive>(model, t2)};
-    FastBVHAccel top(scene, 1);
+    TreeWalker top(std::make_shared<BVHAccel>(scene, 1,
+                                              BVHAccel::SplitMethod::Middle));
     Ray r1(Point3f(-3, 0, 5), Vector3f(0, 0, -1));
     SurfaceInteraction si;
     ASSERT_TRUE(top.Intersect(r1, &si));

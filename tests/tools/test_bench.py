@@ -1,4 +1,4 @@
-"""Tests of chapter 6's benchmark, bench/bvhbench.cpp and its make rules
+"""Tests of the benchmark of Appendix A, bench/bvhbench.cpp and its make rules
 (tools/bench.mk), as a user runs them: options that select only part of the
 benchmarks must give a clear message, never a crash; a configuration of
 compiler and flags builds the library and the program with them, in a

@@ -1,4 +1,4 @@
-// lrt/accelerators/fastbvh.cpp: tangled from chapters/06-bvh.md. Edit the chapter, not this file.
+// lrt/accelerators/fastbvh.cpp: tangled from chapters/07-fast-bvh.md. Edit the chapter, not this file.
 #include "lrt/accelerators/fastbvh.h"
 
 #include <algorithm>

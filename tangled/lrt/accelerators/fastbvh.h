@@ -1,4 +1,4 @@
-// lrt/accelerators/fastbvh.h: tangled from chapters/06-bvh.md. Edit the chapter, not this file.
+// lrt/accelerators/fastbvh.h: tangled from chapters/07-fast-bvh.md. Edit the chapter, not this file.
 #pragma once
 
 #include "lrt/accelerators/bvh.h"

@@ -1,4 +1,4 @@
-// lrt/render/camera.h: tangled from chapters/07-rendering.md. Edit the chapter, not this file.
+// lrt/render/camera.h: tangled from chapters/08-rendering.md. Edit the chapter, not this file.
 #pragma once
 
 #include "lrt/core/geometry.h"

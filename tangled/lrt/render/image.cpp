@@ -1,4 +1,4 @@
-// lrt/render/image.cpp: tangled from chapters/07-rendering.md. Edit the chapter, not this file.
+// lrt/render/image.cpp: tangled from chapters/08-rendering.md. Edit the chapter, not this file.
 #include "lrt/render/image.h"
 
 #include <cerrno>

@@ -1,4 +1,4 @@
-// lrt/render/image.h: tangled from chapters/07-rendering.md. Edit the chapter, not this file.
+// lrt/render/image.h: tangled from chapters/08-rendering.md. Edit the chapter, not this file.
 #pragma once
 
 #include "lrt/core/base.h"

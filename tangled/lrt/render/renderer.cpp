@@ -1,4 +1,4 @@
-// lrt/render/renderer.cpp: tangled from chapters/07-rendering.md. Edit the chapter, not this file.
+// lrt/render/renderer.cpp: tangled from chapters/08-rendering.md. Edit the chapter, not this file.
 #include "lrt/render/renderer.h"
 
 #include <cmath>

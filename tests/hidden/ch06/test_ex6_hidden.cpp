@@ -1,20 +1,20 @@
 // Hidden tests of chapter 6's graded exercises (docs/exercises.md): they run
 // at grading time only and never ship to students. The public tests of the
-// same exercises are the suites Ex6_12_*, Ex6_13_* and Ex6_14_* in
+// same exercises are the suites Ex6_5_*, Ex6_6_* and Ex6_7_* in
 // tests/ch06/, whose checks (tests/ch06/bvh_checks.h) these reuse on other
 // cases:
 //
-//   ex-6.12  the leaf-or-split threshold along y and z and with four
+//   ex-6.5  the leaf-or-split threshold along y and z and with four
 //            primitives, by hand; nodes of zero area; the cost model in
 //            double precision on grids (many exact ties), needles, sheets,
 //            far from the origin and at small scales; triangle meshes
 //            against brute force;
-//   ex-6.13  codes of single bits and axes, the octant in the top bits, the
+//   ex-6.6  codes of single bits and axes, the octant in the top bits, the
 //            order of codes against the Z order computed from the highest
 //            differing bit; HLBVH trees of up to 30,000 boxes in Morton
 //            order, from clustered, repeated and reverse-sorted inputs;
 //            triangle soups against brute force;
-//   ex-6.14  the sequence of primitives tested by Intersect() and
+//   ex-6.7  the sequence of primitives tested by Intersect() and
 //            IntersectP() against a reference traversal with pbrt's order,
 //            on random boxes, rays along the axes with +0 and -0
 //            components, and the bunny-sized closed mesh; brute force.
@@ -166,13 +166,13 @@ int ExpectBruteForce(const Primitive &accel, const Prims &prims,
 }  // namespace
 
 // ---------------------------------------------------------------------------
-// ex-6.12
+// ex-6.5
 
 // Unit cubes 0, d and 2d apart along y and z: a leaf costs 3, a split
 // 1/8 + (18 + 8d) / (6 + 8d), which crosses 3 at d = 0.05. Four cubes: the
 // cheapest split, two and two, costs 1/8 + (24 + 16d) / (6 + 12d), which
 // crosses 4 at d = 0.0246.
-EXERCISE_TEST(Ex6_12_SAHHidden, LeafOrSplitNearTheThreshold) {
+EXERCISE_TEST(Ex6_5_SAHHidden, LeafOrSplitNearTheThreshold) {
     for (int axis : {1, 2}) {
         for (int leafSize : {3, 8}) {
             SCOPED_TRACE(::testing::Message() << "axis " << axis
@@ -206,7 +206,7 @@ EXERCISE_TEST(Ex6_12_SAHHidden, LeafOrSplitNearTheThreshold) {
 
 // Boxes on a line (segments and points along y, then z) have zero area:
 // every split costs c_T, and the tree is split down to single primitives.
-EXERCISE_TEST(Ex6_12_SAHHidden, NodesOfZeroAreaAreSplit) {
+EXERCISE_TEST(Ex6_5_SAHHidden, NodesOfZeroAreaAreSplit) {
     for (int axis : {1, 2}) {
         Scene boxes;
         for (int i = 0; i < 11; ++i) {
@@ -227,7 +227,7 @@ EXERCISE_TEST(Ex6_12_SAHHidden, NodesOfZeroAreaAreSplit) {
 // costs tie exactly), needles along random axes, sheets of several
 // orientations, boxes far from the origin, tiny scenes, and stacks of
 // nearly equal boxes (where leaves are cheaper).
-EXERCISE_TEST(Ex6_12_SAHHidden, DecisionsOnOtherScenes) {
+EXERCISE_TEST(Ex6_5_SAHHidden, DecisionsOnOtherScenes) {
     std::mt19937_64 rng(calls::Seed(0x6e12));
     const int leafSizes[] = {1, 2, 3, 5, 9, 32, 255};
     SAHCheck total;
@@ -284,7 +284,7 @@ EXERCISE_TEST(Ex6_12_SAHHidden, DecisionsOnOtherScenes) {
 
 // SAH trees over triangles: a closed mesh of 8192 triangles and soups of
 // various sizes, their decisions and their hits.
-EXERCISE_TEST(Ex6_12_SAHHidden, TriangleMeshesMatchBruteForce) {
+EXERCISE_TEST(Ex6_5_SAHHidden, TriangleMeshesMatchBruteForce) {
     std::mt19937_64 rng(calls::Seed(0x6e121));
     std::vector<Scene> scenes = {SphereMesh(5)};
     for (int n : {3, 7, 40, 300}) scenes.push_back(Soup(rng, n));
@@ -304,9 +304,9 @@ EXERCISE_TEST(Ex6_12_SAHHidden, TriangleMeshesMatchBruteForce) {
 }
 
 // ---------------------------------------------------------------------------
-// ex-6.13
+// ex-6.6
 
-EXERCISE_TEST(Ex6_13_MortonHidden, KnownCodes) {
+EXERCISE_TEST(Ex6_6_MortonHidden, KnownCodes) {
     for (int i = 0; i < 10; ++i)
         EXPECT_EQ(ex::LeftShift3(uint32_t(1) << i), uint32_t(1) << (3 * i))
             << i;
@@ -337,7 +337,7 @@ EXERCISE_TEST(Ex6_13_MortonHidden, KnownCodes) {
 // Sorting by code is the Z order: of two cells, the one that comes first is
 // the one with the smaller coordinate on the axis of the highest bit in
 // which they differ (z before y before x within a level).
-EXERCISE_TEST(Ex6_13_MortonHidden, CodesFollowTheZOrder) {
+EXERCISE_TEST(Ex6_6_MortonHidden, CodesFollowTheZOrder) {
     std::mt19937_64 rng(calls::Seed(0x6e131));
     const int kPairs = calls::Cases(200000, 20000);
     for (int i = 0; i < kPairs; ++i) {
@@ -374,7 +374,7 @@ EXERCISE_TEST(Ex6_13_MortonHidden, CodesFollowTheZOrder) {
 // HLBVH trees from inputs that stress the radix sort: many boxes, boxes
 // whose codes differ only in their lowest bits (a tight cluster with two
 // far corners), many equal codes, and input in descending code order.
-EXERCISE_TEST(Ex6_13_MortonHidden, SortsLargeAndSkewedInputs) {
+EXERCISE_TEST(Ex6_6_MortonHidden, SortsLargeAndSkewedInputs) {
     std::mt19937_64 rng(calls::Seed(0x6e132));
     std::vector<Scene> scenes;
     Scene uniform;
@@ -432,7 +432,7 @@ EXERCISE_TEST(Ex6_13_MortonHidden, SortsLargeAndSkewedInputs) {
     }
 }
 
-EXERCISE_TEST(Ex6_13_MortonHidden, HLBVHMatchesBruteForce) {
+EXERCISE_TEST(Ex6_6_MortonHidden, HLBVHMatchesBruteForce) {
     std::mt19937_64 rng(calls::Seed(0x6e133));
     std::vector<Scene> scenes = {SphereMesh(4)};
     for (int n : {1, 2, 9, 60, 500}) scenes.push_back(Soup(rng, n));
@@ -446,16 +446,15 @@ EXERCISE_TEST(Ex6_13_MortonHidden, HLBVHMatchesBruteForce) {
             CheckMortonOrder(*bvh);
             hits += ExpectBruteForce(TreeWalker(bvh), scene.prims, rng, rays,
                                      "HLBVH tree");
-            ex::FastBVHAccel fast(scene, leafSize, SplitMethod::HLBVH);
-            hits += ExpectBruteForce(fast, scene.prims, rng, rays,
-                                     "FastBVHAccel HLBVH");
         }
     }
-    EXPECT_GT(hits, rays * 3);  // 4.5 to 7.6 per ray over 30 gradings
+    // About 2.2 to 3.8 hits per ray: over 30 gradings, 4.5 to 7.6 when a
+    // second accelerator traced as many rays.
+    EXPECT_GT(hits, rays * 3 / 2);
 }
 
 // ---------------------------------------------------------------------------
-// ex-6.14
+// ex-6.7
 
 namespace {
 
@@ -544,7 +543,7 @@ bool ExpectSameTests(const ex::BVHAccel &bvh, const Ray &ray,
 // Random boxes, half of them hollow, in trees of several leaf sizes; random
 // rays, some along the axes with +0 and -0 components. Both traversals must
 // test the same primitives in the same order as the reference.
-EXERCISE_TEST(Ex6_14_TraversalHidden, SameTestsAsTheReferenceOrder) {
+EXERCISE_TEST(Ex6_7_TraversalHidden, SameTestsAsTheReferenceOrder) {
     std::mt19937_64 rng(calls::Seed(0x6e14));
     std::vector<int> log;
     int failures = 0, orderMatters = 0, rays = 0;
@@ -593,7 +592,7 @@ EXERCISE_TEST(Ex6_14_TraversalHidden, SameTestsAsTheReferenceOrder) {
 
 // Rows of cubes along each axis with two primitives per leaf, and rays
 // along the rows: both orders of the row and their reverse.
-EXERCISE_TEST(Ex6_14_TraversalHidden, RowsWithLeavesOfTwo) {
+EXERCISE_TEST(Ex6_7_TraversalHidden, RowsWithLeavesOfTwo) {
     std::vector<int> log;
     int failures = 0;
     for (int n : {3, 9, 20}) {
@@ -629,7 +628,7 @@ EXERCISE_TEST(Ex6_14_TraversalHidden, RowsWithLeavesOfTwo) {
     EXPECT_EQ(failures, 0);
 }
 
-EXERCISE_TEST(Ex6_14_TraversalHidden, TrianglesMatchBruteForce) {
+EXERCISE_TEST(Ex6_7_TraversalHidden, TrianglesMatchBruteForce) {
     std::mt19937_64 rng(calls::Seed(0x6e141));
     std::vector<Scene> scenes = {SphereMesh(4)};
     for (int n : {2, 5, 33, 400}) scenes.push_back(Soup(rng, n));

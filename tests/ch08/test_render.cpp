@@ -1,4 +1,4 @@
-// Tests of chapter 7's renderer. Oracles: the analytic silhouette, depth and
+// Tests of chapter 8's renderer. Oracles: the analytic silhouette, depth and
 // brightness of a sphere seen by a known pinhole camera, computed in double
 // precision from the equations of the chapter; exact segment/disk geometry
 // for shadows; BVHAccel::Intersect for the counting traversal; and a
@@ -72,7 +72,7 @@ bool SphereDepths(double xc, double yc, double D, double r, double *t0,
 }
 
 std::string TempPath(const std::string &name) {
-    return "/tmp/lrt-ch07-" + std::to_string(getpid()) + "-" + name;
+    return "/tmp/lrt-ch08-" + std::to_string(getpid()) + "-" + name;
 }
 
 }  // namespace

@@ -86,10 +86,18 @@ bench-build: $(LINTED) bench-compiler
 	    $(BENCH_DIR)/src/bench/bvhbench.cpp $(BENCH_DIR)/liblrt.a \
 	    -lbenchmark -pthread -o $(BENCH_BIN)
 
-bench: bench-build
+bench: bench-build bench-data
 	@if [ -n "$(SANITIZE)" ]; then \
 	    echo "make bench: measure without SANITIZE" >&2; exit 1; fi
-	@if [ ! -f $(BENCH_DATA)/manifest.json ] && [ -f $(BENCH_GENERATOR) ]; \
-	then python3 $(BENCH_GENERATOR) --out $(BENCH_DATA); fi
 	$(BENCH_BIN) --data $(BENCH_DATA) --json $(BENCH_JSON) $(BENCH_ARGS)
 endif
+
+.PHONY: bench-data bench-path
+bench-data:
+	@if [ ! -f $(BENCH_DATA)/manifest.json ] && [ -f $(BENCH_GENERATOR) ]; \
+	then python3 $(BENCH_GENERATOR) --out $(BENCH_DATA); fi
+
+# The configuration's program and data, for tools/bench_compare.py, which
+# runs several configurations in turn.
+bench-path:
+	@echo $(BENCH_BIN) $(BENCH_DATA)

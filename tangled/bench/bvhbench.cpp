@@ -583,6 +583,9 @@ void WriteJSON(const std::string &filename,
                        << t->counters.at("Mrays/s") << ", \"hits\": "
                        << t->counters.at("hits") << ", \"sum_t\": "
                        << t->counters.at("sum_t");
+                    if (const char *check = ReferenceCheck(mesh->name, rays.name,
+                                                           t->counters.at("hits")); *check)
+                        js << ", \"reference\": \"" << check << "\"";
                     if (auto r = rep.PairedRatio(BenchName(*mesh, m, v, rays.name),
                                                  first(rays.name), "Mrays/s"))
                         js << ", \"ratio\": " << *r;

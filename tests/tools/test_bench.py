@@ -130,6 +130,9 @@ class BenchProgramTest(unittest.TestCase):
                          ['%.2f' % final['build_ratio']],
                          re.findall(r' ([0-9.]+)x', printed.group(0)))
         self.assertEqual([first['rays'][k]['ratio'] for k in rays], [1, 1])
+        # bunny.ply has no reference hit counts: no record claims a check.
+        self.assertFalse(any('reference' in v for x in data['results']
+                             for v in x['rays'].values()))
 
 
 @unittest.skipUnless(has_benchmark(), 'no chapter of this book writes the benchmark')
@@ -225,12 +228,13 @@ class BenchTableTest(unittest.TestCase):
                 [sys.executable, os.path.join(ROOT, 'tools', 'bench_table.py'),
                  '--configurations'] + paths, capture_output=True, text=True)
 
-    def configuration(self, cxx, flags, speed):
+    def configuration(self, cxx, flags, speed, ratio=2.5, build_ms=10.0):
         results = []
         for mesh, triangles in (('bunny_L4', 940544), ('bunny_L2', 58784)):
             results.append(self.record('first', mesh, triangles, (1, 0.5), (1, 1)))
             results.append(self.record('final', mesh, triangles,
-                                       (speed, speed / 4), (2.5, 4.25)))
+                                       (speed, speed / 4), (ratio, 4.25)))
+            results[-1]['build_ms'] = build_ms
         return {'cxx': cxx, 'cxxflags': flags, 'compiler': 'GCC 12.2.0',
                 'results': results}
 
@@ -241,11 +245,38 @@ class BenchTableTest(unittest.TestCase):
         lines = r.stdout.splitlines()
         self.assertEqual(lines[0], '| compiler and flags | 58,784, camera | '
                          '58,784, incoherent | 940,544, camera | '
-                         '940,544, incoherent |')
+                         '940,544, incoherent | 58,784, build ms | 940,544, build ms |')
         self.assertEqual(lines[2], '| `g++ -O2` | 10.9 (2.50×) | 2.73 (4.25×) | '
-                         '10.9 (2.50×) | 2.73 (4.25×) |')
+                         '10.9 (2.50×) | 2.73 (4.25×) | 10 | 10 |')
         self.assertTrue(lines[3].startswith('| `clang++ -O3 -march=native` | 7.51 '))
         self.assertEqual(len(lines), 4)
+
+    def test_rounds_of_a_configuration_give_one_row_of_medians(self):
+        # Three rounds of g++ -O3 between two of g++ -O2, files interleaved as
+        # tools/bench_compare.py writes them; the ratio is the median of the
+        # rounds' ratios, not the ratio of the median speeds.
+        r = self.run_table([self.configuration('g++', '-O2', 10, 2.0, 12),
+                            self.configuration('g++', '-O3', 9, 2.2, 20),
+                            self.configuration('g++', '-O2', 12, 3.0, 14),
+                            self.configuration('g++', '-O3', 30, 2.4, 18),
+                            self.configuration('g++', '-O3', 11, 2.9, 16)])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = r.stdout.splitlines()
+        self.assertEqual(len(lines), 4)
+        self.assertEqual(lines[2], '| `g++ -O2` | 11 (2.50×) | 2.75 (4.25×) | '
+                         '11 (2.50×) | 2.75 (4.25×) | 13 | 13 |')
+        self.assertEqual(lines[3], '| `g++ -O3` | 11 (2.40×) | 2.75 (4.25×) | '
+                         '11 (2.40×) | 2.75 (4.25×) | 18 | 18 |')
+
+    def test_a_hit_count_off_the_reference_is_an_error(self):
+        good = self.configuration('g++', '-O3', 10)
+        wrong = self.configuration('g++', '-O3', 10)
+        rays = wrong['results'][3]['rays']['rays_primary.bin']
+        rays['hits'], rays['reference'] = 398700, 'MISMATCH'
+        r = self.run_table([good, wrong])
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn('1.json: 58784 triangles: rays_primary.bin: 398700 hits, not the '
+                      'reference count', r.stderr)
 
     def test_a_file_without_the_configuration_is_an_error(self):
         old = self.configuration('g++', '-O2', 10)

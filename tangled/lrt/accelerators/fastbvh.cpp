@@ -222,7 +222,11 @@ static bool StoreTriangle(FastTriangle *ft, FastTriangleInfo *info,
         ft->c[a][3] = 0;
     }
     *info = {tri, tri->FaceIndex(), tri->FlipsNormal(),
-             !tri->HasVertexAttributes()};
+             !tri->HasVertexAttributes(), Normal3f(0, 0, 0)};
+    if (info->plain) {
+        Vector3f dp02 = q[0] - q[2], dp12 = q[1] - q[2];
+        info->n = Normal3f(Normalize(Cross(dp02, dp12)));
+    }
     return true;
 }
 // FastBVHAccel Utility Functions
@@ -422,34 +426,33 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     return true;
 }
 // FastBVHAccel Utility Functions
-static inline bool CompletePlainTriangle(const Ray &ray, const Point3f &p0,
+static inline void DefaultUVDerivatives(const Vector3f &dp02,
+                                        const Vector3f &dp12,
+                                        Vector3f *dpdu, Vector3f *dpdv) {
+    Point2f uv[3];
+    Triangle::GetDefaultUVs(uv);
+    Vector2f duv02 = uv[0] - uv[2], duv12 = uv[1] - uv[2];
+    Float invdet = 1 / (duv02[0] * duv12[1] - duv02[1] * duv12[0]);
+    *dpdu = (duv12[1] * dp02 - duv02[1] * dp12) * invdet;
+    *dpdv = (duv02[0] * dp12 - duv12[0] * dp02) * invdet;
+}
+
+static inline void CompletePlainTriangle(const Ray &ray, const Point3f &p0,
                                          const Point3f &p1,
                                          const Point3f &p2,
                                          const FastTriangleHit &hit,
                                          const FastTriangleInfo &info,
                                          SurfaceInteraction *isect) {
     Float e0 = hit.e0, e1 = hit.e1, e2 = hit.e2, invDet = hit.invDet;
-    // Reject degenerate triangles
     Vector3f dp02 = p0 - p2, dp12 = p1 - p2;
-    Vector3f ng = Cross(dp02, dp12);
-    if (ng.LengthSquared() == 0) return false;
     // Compute barycentric coordinates of the triangle hit
     Float b0 = e0 * invDet, b1 = e1 * invDet, b2 = e2 * invDet;
     Point2f uv[3];
     Triangle::GetDefaultUVs(uv);
-    // Compute triangle partial derivatives from uv
-    Vector2f duv02 = uv[0] - uv[2], duv12 = uv[1] - uv[2];
-    Float determinant = duv02[0] * duv12[1] - duv02[1] * duv12[0];
-    bool degenerateUV = std::abs(determinant) < 1e-8;
     Vector3f dpdu, dpdv;
-    if (!degenerateUV) {
-        Float invdet = 1 / determinant;
-        dpdu = (duv12[1] * dp02 - duv02[1] * dp12) * invdet;
-        dpdv = (duv02[0] * dp12 - duv12[0] * dp02) * invdet;
-    }
-    // Handle degenerate uv parameterization or partial derivatives
-    if (degenerateUV || Cross(dpdu, dpdv).LengthSquared() == 0)
-        CoordinateSystem(Normalize(ng), &dpdu, &dpdv);
+    DefaultUVDerivatives(dp02, dp12, &dpdu, &dpdv);
+    if (Cross(dpdu, dpdv).LengthSquared() == 0)
+        CoordinateSystem(Vector3f(info.n), &dpdu, &dpdv);
     // Compute error bounds for triangle intersection
     Float xAbsSum = std::abs(b0 * p0.x) + std::abs(b1 * p1.x) +
                     std::abs(b2 * p2.x);
@@ -461,15 +464,11 @@ static inline bool CompletePlainTriangle(const Ray &ray, const Point3f &p0,
     // Interpolate (u,v) parametric coordinates and hit point
     Point3f pHit = b0 * p0 + b1 * p1 + b2 * p2;
     Point2f uvHit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
-    bool flip = info.flipNormal;
-    int faceIndex = info.faceIndex;
-    // Construct the SurfaceInteraction of the triangle hit
     new (isect) SurfaceInteraction(pHit, pError, uvHit, -ray.d, dpdu, dpdv,
                                    Normal3f(0, 0, 0), Normal3f(0, 0, 0),
-                                   Normal3f(Normalize(ng)), ray.time, flip,
-                                   faceIndex);
+                                   info.n, ray.time, info.flipNormal,
+                                   info.faceIndex);
     isect->shape = info.triangle;
-    return true;
 }
 // FastBVHAccel Traversal Function
 struct FastStackEntry {
@@ -946,12 +945,13 @@ bool FastBVHAccel::Intersect(const Ray &ray,
         const FastTriangle &ft = triangles[hitTriangle];
         const FastTriangleInfo &info = triangleInfo[hitTriangle];
         Point3f p0 = ft.Vertex(0), p1 = ft.Vertex(1), p2 = ft.Vertex(2);
-        bool completed =
-            info.plain
-                ? CompletePlainTriangle(ray, p0, p1, p2, closest, info, isect)
-                : info.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
-                                                      closest.e1, closest.e2,
-                                                      closest.invDet, isect);
+        bool completed = true;
+        if (info.plain)
+            CompletePlainTriangle(ray, p0, p1, p2, closest, info, isect);
+        else
+            completed = info.triangle->CompleteIntersection(ray, p0, p1, p2, closest.e0,
+                                                            closest.e1, closest.e2,
+                                                            closest.invDet, isect);
         if (!completed)
             throw std::logic_error("FastBVHAccel::Intersect: the fast triangle "
                                    "test accepted a degenerate triangle");

@@ -73,6 +73,7 @@ struct FastTriangleInfo {
     int faceIndex;
     bool flipNormal;
     bool plain;  // the mesh has no normals, tangents or (u,v) per vertex
+    Normal3f n;  // the geometric normal, for plain triangles
 };
 // FastBVHAccel Inline Functions
 template <typename T>

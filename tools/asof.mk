@@ -78,12 +78,23 @@ $(DIR)/obj/tests/%.o: tests/%.cpp | compile-links
 # (-fdebug-prefix-map). Diagnostics name tests/... and chapters/..., paths that
 # hold from the repository too. The dependency files come out relative to
 # $(CC_DIR); sed makes them relative to the repository.
+#
+# ccache runs in depend mode: it hashes the files the compiler's dependency
+# file lists instead of running the preprocessor, so a hit costs a few stats
+# and hashes (about 0.06 s, against 0.4 s for a preprocessor-mode hit) and a
+# miss does not preprocess twice. -MD rather than -MMD, so that the list, and
+# the hash, holds the system headers too (GoogleTest, libstdc++). Direct and
+# depend mode refuse headers newer than the compile's start unless told
+# include_file_mtime,include_file_ctime: the tangle has just rewritten them,
+# and their content, which is what is hashed, is what counts.
 CC_DIR := $(DIR)/cc
 CCACHE := $(shell command -v ccache)
+CCACHE_ENV := CCACHE_NOHASHDIR=1 CCACHE_DEPEND=1 \
+              CCACHE_SLOPPINESS=include_file_mtime,include_file_ctime
 define compile
 @mkdir -p $(@D)
-cd $(CC_DIR) && CCACHE_NOHASHDIR=1 $(CCACHE) $(CXX) $(CXXFLAGS) \
-    -fdebug-prefix-map=$(abspath $(CC_DIR))=. -Isrc $(2) -MMD -MP -MT $@ -c $(1) -o $(abspath $@)
+cd $(CC_DIR) && $(CCACHE_ENV) $(CCACHE) $(CXX) $(CXXFLAGS) \
+    -fdebug-prefix-map=$(abspath $(CC_DIR))=. -Isrc $(2) -MD -MP -MT $@ -c $(1) -o $(abspath $@)
 sed -i -E 's#(^| )(src|tests|hidden)/#\1$(CC_DIR)/\2/#g' $(basename $@).d
 endef
 

@@ -197,7 +197,12 @@ class IncrementalBuildTest(unittest.TestCase):
         os.symlink(TOOLS, os.path.join(self.checkout, 'tools'))
         with open(os.path.join(self.checkout, 'tests', 'ch02', 'test_value.cpp'), 'w') as f:
             f.write(self.TEST)
-        self.env = dict(os.environ, CCACHE_DIR=self.ccache)
+        # Run from make test, the environment holds the outer make's flags
+        # (-s, its variables) and its exported variables: none may reach this
+        # build.
+        self.env = {k: v for k, v in os.environ.items() if k not in (
+            'MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'CHAPTERS', 'BUILD', 'FLOAT', 'SANITIZE')}
+        self.env['CCACHE_DIR'] = self.ccache
 
     def build_and_run(self, value):
         with open(os.path.join(self.checkout, 'chapters', '02-value.md'), 'w') as f:

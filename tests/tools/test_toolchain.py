@@ -111,15 +111,6 @@ class LintTest(unittest.TestCase):
 
 
 class TangleTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        # One cache for both tests: the second finds the first's entries.
-        cls.ccache = tempfile.mkdtemp()
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.ccache)
-
     def setUp(self):
         self.tmp = tempfile.mkdtemp()
         self.addCleanup(shutil.rmtree, self.tmp)

@@ -158,6 +158,75 @@ class TangleTest(unittest.TestCase):
         self.assertIn('Body of f', result.stderr)
 
 
+class IncrementalBuildTest(unittest.TestCase):
+    """tools/asof.mk on a one-chapter book in a scratch checkout, with a
+    compiler cache of its own: an edited header is recompiled, never taken
+    from the cache, and a precompiled header that does not fit fails the
+    build instead of being quietly ignored. Light flags (no -g, no -O2) keep
+    the compiles short; the rules are those of the real build."""
+
+    CHAPTER = ('# Value\n\n```cpp\n<<lrt/value.h>>=\n#pragma once\n'
+               'inline int Value() { return %d; }\n@\n```\n')
+    TEST = ('#include "lrt/value.h"\n#include <gtest/gtest.h>\n'
+            'TEST(Value, IsOne) { EXPECT_EQ(Value(), 1); }\n')
+
+    @classmethod
+    def setUpClass(cls):
+        # One cache for both tests: the second finds the first's entries.
+        cls.ccache = tempfile.mkdtemp()
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.ccache)
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, self.tmp)
+        self.checkout = os.path.join(self.tmp, 'checkout')
+        os.makedirs(os.path.join(self.checkout, 'chapters'))
+        os.makedirs(os.path.join(self.checkout, 'tests', 'ch02'))
+        os.symlink(TOOLS, os.path.join(self.checkout, 'tools'))
+        with open(os.path.join(self.checkout, 'tests', 'ch02', 'test_value.cpp'), 'w') as f:
+            f.write(self.TEST)
+        # Run from make test, the environment holds the outer make's flags
+        # (-s, its variables) and its exported variables: none may reach this
+        # build.
+        self.env = {k: v for k, v in os.environ.items() if k not in (
+            'MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'CHAPTERS', 'BUILD', 'FLOAT', 'SANITIZE')}
+        self.env['CCACHE_DIR'] = self.ccache
+
+    def build_and_run(self, value):
+        with open(os.path.join(self.checkout, 'chapters', '02-value.md'), 'w') as f:
+            f.write(self.CHAPTER % value)
+        make = ['make', '--no-print-directory', '-f', 'tools/asof.mk', 'ASOF=02',
+                'CHAPTERS=chapters/02-value.md', 'BUILD=build',
+                'CXXFLAGS=-std=c++17 -Wall -Werror']
+        for goal in ('tangle', 'tests'):
+            result = subprocess.run(make + [goal], cwd=self.checkout, env=self.env,
+                                    capture_output=True, text=True)
+            if result.returncode != 0:
+                return result
+        self.assertIn('-include pch/test_pch.h', result.stdout)
+        return subprocess.run([os.path.join(self.checkout, 'build/float/asof/02/tests/ch02')],
+                              capture_output=True, text=True)
+
+    def test_edited_header_is_compiled_again(self):
+        for value, passes in ((1, True), (2, False), (1, True), (2, False)):
+            result = self.build_and_run(value)
+            self.assertEqual(result.returncode == 0, passes,
+                             'Value() = %d:\n%s%s' % (value, result.stdout, result.stderr))
+
+    def test_unfit_precompiled_header_fails_the_build(self):
+        self.assertEqual(self.build_and_run(1).returncode, 0)
+        pch = os.path.join(self.checkout, 'build/float/pch/test_pch.h.gch')
+        with open(pch, 'wb') as f:
+            f.write(b'not a precompiled header')
+        os.remove(os.path.join(self.checkout, 'build/float/asof/02/obj/tests/ch02/test_value.o'))
+        result = self.build_and_run(1)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn('test_pch.h.gch', result.stderr)
+
+
 class WeaveTest(unittest.TestCase):
     """The filter's own reading of the chunks must match noweb's; what it
     writes for footers, code, examples, captions and citations."""

@@ -17,6 +17,8 @@
 // lrt.h includes
 #include "lrt/core/plyreader.h"
 // lrt.h includes
+#include "lrt/core/slabtest.h"
+// lrt.h includes
 #include "lrt/core/primitive.h"
 // lrt.h includes
 #include "lrt/accelerators/bvh.h"

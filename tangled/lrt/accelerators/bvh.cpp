@@ -1,5 +1,6 @@
 // lrt/accelerators/bvh.cpp: tangled from chapters/06-bvh.md. Edit the chapter, not this file.
 #include "lrt/accelerators/bvh.h"
+#include "lrt/core/slabtest.h"
 
 #include <algorithm>
 #include <deque>

@@ -1,5 +1,6 @@
 // lrt/render/bvhvisits.cpp: tangled from chapters/08-rendering.md. Edit the chapter, not this file.
 #include "lrt/render/bvhvisits.h"
+#include "lrt/core/slabtest.h"
 
 #include <algorithm>
 

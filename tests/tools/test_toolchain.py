@@ -151,6 +151,28 @@ class TangleTest(unittest.TestCase):
         self.assertEqual(os.stat(os.path.join(out, 'lrt', 'good.h')).st_mode & 0o777,
                          0o644)
 
+    def test_unchanged_files_keep_their_time(self):
+        # make rebuilds what a tangle touched: a file whose text is the same
+        # must not be written again, one whose text changed must be.
+        chapter = os.path.join(self.tmp, '02-two.md')
+        text = ('# Two\n\n```cpp\n<<lrt/a.h>>=\nint a();\n@\n```\n\nText.\n\n'
+                '```cpp\n<<lrt/b.h>>=\nint b();\n@\n```\n')
+        with open(chapter, 'w') as f:
+            f.write(text)
+        out = os.path.join(self.tmp, 'src')
+        self.assertEqual(self.tangle('--out', out, chapter).returncode, 0)
+        a, b = os.path.join(out, 'lrt', 'a.h'), os.path.join(out, 'lrt', 'b.h')
+        for path in (a, b):
+            os.utime(path, (1000000000, 1000000000))
+        with open(chapter, 'w') as f:
+            f.write(text.replace('int b();', 'long b();'))
+        result = self.tangle('--out', out, chapter)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(os.stat(a).st_mtime, 1000000000)
+        self.assertNotEqual(os.stat(b).st_mtime, 1000000000)
+        with open(b) as f:
+            self.assertIn('long b();', f.read())
+
     def test_undefined_fragment_fails_the_tangle(self):
         result = self.tangle('--out', os.path.join(self.tmp, 'out'),
                              os.path.join(LINT_CASES, 'undefined-use.md'))

@@ -77,8 +77,11 @@ $(DIR)/obj/tests/%.o: tests/%.cpp $(PCH) | compile-links
 # (src/lrt/..., tests/chNN/..., and the chapters through #line) as of every
 # chapter and in every checkout. ccache, where installed, then compiles a test
 # once for all the chapters whose code it sees unchanged, and a kit's copy of
-# the book's code once for the kit and the book. CCACHE_NOHASHDIR lets it ignore
-# the directory, which the debug information does not record either
+# the book's code once for the kit and the book. That is why a test includes
+# the headers it uses and never lrt/lrt.h, which every chapter changes: a test
+# of chapter 2 is compiled again only as of the chapters that change the
+# headers it reads (3 and 5), not as of every later one. CCACHE_NOHASHDIR lets
+# it ignore the directory, which the debug information does not record either
 # (-fdebug-prefix-map). Diagnostics name tests/... and chapters/..., paths that
 # hold from the repository too. The dependency files come out relative to
 # $(CC_DIR); sed makes them relative to the repository.

@@ -5,7 +5,7 @@
 #ifndef LRT_TESTS_CALLS_H
 #define LRT_TESTS_CALLS_H
 
-#include "lrt/lrt.h"
+#include "lrt/core/transform.h"
 
 #include "calls/core.h"
 

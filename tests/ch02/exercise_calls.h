@@ -6,6 +6,8 @@
 #ifndef LRT_TESTS_CH02_EXERCISE_CALLS_H
 #define LRT_TESTS_CH02_EXERCISE_CALLS_H
 
+#include "lrt/core/interaction.h"
+#include "lrt/core/transform.h"
 #include "calls/calls.h"
 
 #include <cstdint>

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <type_traits>
 
-#include "lrt/lrt.h"
+#include "lrt/core/geometry.h"
 
 #include "exercise_calls.h"
 

@@ -18,7 +18,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "lrt/lrt.h"
+#include "lrt/core/geometry.h"
 
 using namespace lrt;
 

@@ -15,7 +15,7 @@
 #include <sstream>
 #include <vector>
 
-#include "lrt/lrt.h"
+#include "lrt/core/geometry.h"
 
 #include "exercise_calls.h"
 

@@ -1,7 +1,8 @@
 // Chapter 2 (second part): Interaction, SurfaceInteraction, and
 // transforming a SurfaceInteraction.
 
-#include "lrt/lrt.h"
+#include "lrt/core/interaction.h"
+#include "lrt/core/transform.h"
 
 #include "exercise_calls.h"
 

@@ -6,7 +6,7 @@
 // exact images of points for the rounding-error bounds in long double as
 // well. Random tests use fixed seeds and state their case counts.
 
-#include "lrt/lrt.h"
+#include "lrt/core/transform.h"
 
 #include "exercise_calls.h"
 

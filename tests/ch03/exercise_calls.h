@@ -12,6 +12,10 @@
 #ifndef LRT_TESTS_CH03_EXERCISE_CALLS_H
 #define LRT_TESTS_CH03_EXERCISE_CALLS_H
 
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/shapes/triangle.h"
+#include "lrt/core/plyreader.h"
 #include "calls/calls.h"
 
 #include <unistd.h>

@@ -5,7 +5,7 @@
 // (independent of lrt's Inverse).
 #pragma once
 
-#include "lrt/lrt.h"
+#include "lrt/core/transform.h"
 
 #include <algorithm>
 #include <cmath>

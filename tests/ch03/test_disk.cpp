@@ -7,7 +7,7 @@
 // (hit points within rounding distance of a rim or of a phiMax cut, origins
 // on the plane, hits at tMax) are flagged as ambiguous; disagreements on
 // them are counted and bounded, on any other ray they fail the test.
-#include "lrt/lrt.h"
+#include "lrt/shapes/disk.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Tests of EFloat (running error bounds) and of the EFloat Quadratic().
 // The oracle is long double arithmetic (64-bit mantissa on x86-64), which is
 // exact for the products of two floats and much more precise than double.
-#include "lrt/lrt.h"
+#include "lrt/core/efloat.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,8 @@
 // are those the chapter derives (Section "Spheres Far from the Ray's
 // Origin"); the tests count the decisions inside the bands and fail on any
 // wrong decision outside them.
-#include "lrt/lrt.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
 
 #include <gtest/gtest.h>
 

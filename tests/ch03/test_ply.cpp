@@ -9,7 +9,8 @@
 // tests hand the files' bytes to the exercise calls of exercise_calls.h,
 // which write and read them.
 
-#include "lrt/lrt.h"
+#include "lrt/core/plyreader.h"
+#include "lrt/shapes/triangle.h"
 
 #include "exercise_calls.h"
 

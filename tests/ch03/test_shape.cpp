@@ -2,7 +2,8 @@
 // Interaction::SpawnRay*() methods. The tests of OffsetRayOrigin() and of
 // the methods that call it belong to exercise ex-3.22 (suites Ex3_22_*) and
 // reach that code through the exercise calls of exercise_calls.h.
-#include "lrt/lrt.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
 
 #include "exercise_calls.h"
 

@@ -5,7 +5,8 @@
 // rays with OffsetRayOrigin() and belong to exercise ex-3.22 (Ex3_22_*): the
 // rays are spawned by exercise calls (exercise_calls.h), and the shapes they
 // must miss are intersected here.
-#include "lrt/lrt.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
 
 #include "exercise_calls.h"
 

@@ -10,7 +10,7 @@
 // rounding distance of a clipping boundary, origins on the surface, hits at
 // tMax) are flagged as ambiguous; disagreements on them are counted and
 // bounded, disagreements on any other ray fail the test.
-#include "lrt/lrt.h"
+#include "lrt/shapes/sphere.h"
 
 #include <gtest/gtest.h>
 

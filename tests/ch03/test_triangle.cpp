@@ -9,7 +9,7 @@
 // tests build their meshes and intersect them through the exercise calls of
 // exercise_calls.h.
 
-#include "lrt/lrt.h"
+#include "lrt/shapes/triangle.h"
 
 #include "exercise_calls.h"
 

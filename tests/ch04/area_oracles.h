@@ -16,7 +16,7 @@
 #ifndef LRT_TESTS_CH04_AREA_ORACLES_H
 #define LRT_TESTS_CH04_AREA_ORACLES_H
 
-#include "lrt/lrt.h"
+#include "lrt/core/base.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,6 +7,9 @@
 #ifndef LRT_TESTS_CH04_EXERCISE_CALLS_H
 #define LRT_TESTS_CH04_EXERCISE_CALLS_H
 
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/shapes/triangle.h"
 #include "calls/calls.h"
 
 #include <memory>

@@ -25,7 +25,9 @@
 // standard errors once in some 16000 tries, and a right answer must pass
 // every time.
 
-#include "lrt/lrt.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/shapes/triangle.h"
 
 #include "area_oracles.h"
 #include "exercise_calls.h"

@@ -14,7 +14,8 @@
 // integrator and of its power to reject wrong formulas call no Area() and
 // belong to no exercise.
 
-#include "lrt/lrt.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
 
 #include "area_oracles.h"
 #include "exercise_calls.h"

@@ -13,7 +13,9 @@
 // All of them are public tests of the chapter's exercises: Ex4_9_* for the
 // sphere, Ex4_10_* for the disk, Ex4_11_* for the triangle.
 
-#include "lrt/lrt.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/shapes/triangle.h"
 
 #include "area_oracles.h"
 #include "exercise_calls.h"

@@ -10,7 +10,7 @@
 // (Ex4_9_* sphere, Ex4_10_* disk, Ex4_11_* triangle); the test of wrong
 // formulas calls no Area() and belongs to no exercise.
 
-#include "lrt/lrt.h"
+#include "lrt/shapes/triangle.h"
 
 #include "area_oracles.h"
 #include "exercise_calls.h"

@@ -4,6 +4,7 @@
 #ifndef LRT_TESTS_CH05_EXERCISE_CALLS_H
 #define LRT_TESTS_CH05_EXERCISE_CALLS_H
 
+#include "lrt/core/slabtest.h"
 #include "calls/calls.h"
 
 #include <array>

@@ -5,7 +5,7 @@
 // form with a precomputed reciprocal direction), requires that they agree,
 // and checks the invariants of a reported interval.
 
-#include "lrt/lrt.h"
+#include "lrt/core/slabtest.h"
 
 #include "exercise_calls.h"
 

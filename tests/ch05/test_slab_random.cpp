@@ -17,7 +17,7 @@
 // resolves in the coordinates, although the slab test, which works with
 // parameter values, resolves it.
 
-#include "lrt/lrt.h"
+#include "lrt/core/slabtest.h"
 
 #include "exercise_calls.h"
 

@@ -7,7 +7,8 @@
 #pragma once
 
 #include "exercise_calls.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/bvh.h"
+#include "lrt/core/plyreader.h"
 
 #include <gtest/gtest.h>
 

@@ -20,7 +20,8 @@
 #pragma once
 
 #include "exercise_calls.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/bvh.h"
+#include "lrt/core/slabtest.h"
 
 #include <gtest/gtest.h>
 

@@ -10,7 +10,9 @@
 
 #include "bvh_checks.h"
 #include "exercise_calls.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/bvh.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/triangle.h"
 
 #include <gtest/gtest.h>
 

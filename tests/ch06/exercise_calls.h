@@ -19,6 +19,11 @@
 #ifndef LRT_TESTS_CH06_EXERCISE_CALLS_H
 #define LRT_TESTS_CH06_EXERCISE_CALLS_H
 
+#include "lrt/accelerators/bvh.h"
+#include "lrt/core/slabtest.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/shapes/triangle.h"
 #include "calls/calls.h"
 
 #include <algorithm>

@@ -17,7 +17,8 @@
 #include "bvh_checks.h"
 #include "bvh_scenes.h"
 #include "exercise_calls.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/bvh.h"
+#include "lrt/shapes/triangle.h"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include "bvh_bunny.h"
 #include "bvh_checks.h"
 #include "exercise_calls.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/bvh.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,9 @@
 // shape placed in world space by its ObjectToWorld transformation.
 
 #include "bvh_checks.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/bvh.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/triangle.h"
 
 #include <gtest/gtest.h>
 

@@ -17,7 +17,9 @@
 // with their stubs.
 
 #include "ch06/bvh_checks.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/fastbvh.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
 
 #include <gtest/gtest.h>
 

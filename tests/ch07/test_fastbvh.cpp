@@ -11,7 +11,7 @@
 
 #include "ch06/bvh_checks.h"
 #include "ch06/bvh_scenes.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/fastbvh.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // a subset of camera and incoherent rays.
 
 #include "ch06/bvh_bunny.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/fastbvh.h"
 
 #include <gtest/gtest.h>
 

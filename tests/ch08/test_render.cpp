@@ -4,7 +4,11 @@
 // for shadows; BVHAccel::Intersect for the counting traversal; and a
 // double-precision sRGB formula for the encoding.
 
-#include "lrt/lrt.h"
+#include "lrt/render/renderer.h"
+#include "lrt/render/bvhvisits.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/accelerators/bvh.h"
 
 #include <gtest/gtest.h>
 

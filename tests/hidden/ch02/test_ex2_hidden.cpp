@@ -8,7 +8,7 @@
 // state their case counts; their seeds change with every grading
 // (calls::Seed).
 
-#include "lrt/lrt.h"
+#include "lrt/core/transform.h"
 
 #include "ch02/exercise_calls.h"
 

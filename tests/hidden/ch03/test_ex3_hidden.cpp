@@ -14,7 +14,9 @@
 // the student edition; they reach the exercise's code only through the
 // exercise calls of ch03/exercise_calls.h.
 
-#include "lrt/lrt.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/core/plyreader.h"
 
 #include "ch03/exercise_calls.h"
 

@@ -20,7 +20,9 @@
 // must pass every time for a right answer. Tests that could accept a wrong
 // formula also check that they reject it.
 
-#include "lrt/lrt.h"
+#include "lrt/shapes/sphere.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/shapes/triangle.h"
 
 #include "ch04/exercise_calls.h"
 

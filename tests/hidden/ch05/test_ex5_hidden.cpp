@@ -7,7 +7,7 @@
 // unbounded ray (and no first form, so that they grade ex-5.10 alone), and
 // the ex-5.11 tests rays with a finite tMax. Expected answers are exact.
 
-#include "lrt/lrt.h"
+#include "lrt/core/slabtest.h"
 
 #include "ch05/exercise_calls.h"
 

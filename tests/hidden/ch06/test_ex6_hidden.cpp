@@ -27,7 +27,8 @@
 
 #include "../../ch06/bvh_checks.h"
 #include "ch06/exercise_calls.h"
-#include "lrt/lrt.h"
+#include "lrt/accelerators/bvh.h"
+#include "lrt/core/slabtest.h"
 
 #include <gtest/gtest.h>
 

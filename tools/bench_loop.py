@@ -15,13 +15,17 @@ repository, or a kit):
               committed state, with an empty compiler cache, as on a new machine
 
 CPU time (user + system of every process the command ran) is given beside the
-wall time: it depends less on what else the machine is doing.
+wall time: it depends less on what else the machine is doing. The report names
+the python3 that make runs: the loop starts it several times, and a python3
+behind a version manager's shim (pyenv) takes about 0.3 s longer to start than
+Debian's.
 """
 import argparse
 import glob
 import os
 import random
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -109,8 +113,8 @@ def main():
         results.append(('clean clone: make test', median_of(args.runs, clean)))
 
     load = os.getloadavg()[0]
-    print('%s, medians of %d runs, load average %.1f at the end'
-          % (checkout, args.runs, load))
+    print('%s, medians of %d runs, load average %.1f at the end, python3 is %s'
+          % (checkout, args.runs, load, os.path.realpath(shutil.which('python3'))))
     print('%-34s %10s %10s' % ('command', 'wall (s)', 'CPU (s)'))
     for name, (wall, cpu) in results:
         print('%-34s %10.1f %10.1f' % (name, wall, cpu))

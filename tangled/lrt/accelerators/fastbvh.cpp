@@ -349,8 +349,8 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     __m128 xNext = _mm_shuffle_ps(xs, xs, _MM_SHUFFLE(3, 0, 2, 1));
     __m128 yNext = _mm_shuffle_ps(ys, ys, _MM_SHUFFLE(3, 0, 2, 1));
     __m128 es = _mm_sub_ps(_mm_mul_ps(xs, yNext), _mm_mul_ps(ys, xNext));
-    // The sign bits are the signs where the magnitudes are greater than zero
-    // (neither zero nor NaN); reject if all three are and the signs differ
+    // The sign bits are the signs where the squares are greater than zero
+    // (not zero, NaN or tiny); reject if all three are and the signs differ
     __m128 nonzeroLanes = _mm_cmpgt_ps(_mm_mul_ps(es, es), _mm_setzero_ps());
     unsigned nonzero = unsigned(_mm_movemask_ps(nonzeroLanes)) & 7u;
     unsigned negative = unsigned(_mm_movemask_ps(es)) & 7u;
@@ -370,16 +370,7 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     Float y0 = lane[4][0], y1 = lane[4][1], y2 = lane[4][2];
     Float e0 = lane[5][1], e1 = lane[5][2], e2 = lane[5][0];
     const Float Sz = fr.Sz;
-    if (nonzero != 7u) {
-        // Test the signs of the edge functions with few branches
-        if (sizeof(Float) == sizeof(float) && ((e0 == 0) | (e1 == 0) | (e2 == 0))) {
-            e0 = Float(double(x1) * double(y2) - double(y1) * double(x2));
-            e1 = Float(double(x2) * double(y0) - double(y2) * double(x0));
-            e2 = Float(double(x0) * double(y1) - double(y0) * double(x1));
-        }
-        if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0)))
-            return false;
-    }
+    const bool signsTested = nonzero == 7u;
 #else
     // Translate and permute the vertices with the ray's axes
     const int kx = fr.kx, ky = fr.ky, kz = fr.kz;
@@ -399,15 +390,18 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     Float e0 = x1 * y2 - y1 * x2;
     Float e1 = x2 * y0 - y2 * x0;
     Float e2 = x0 * y1 - y0 * x1;
-    // Test the signs of the edge functions with few branches
-    if (sizeof(Float) == sizeof(float) && ((e0 == 0) | (e1 == 0) | (e2 == 0))) {
-        e0 = Float(double(x1) * double(y2) - double(y1) * double(x2));
-        e1 = Float(double(x2) * double(y0) - double(y2) * double(x0));
-        e2 = Float(double(x0) * double(y1) - double(y0) * double(x1));
-    }
-    if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0)))
-        return false;
+    const bool signsTested = false;
 #endif
+    if (!signsTested) {
+        // Test the signs of the edge functions with few branches
+        if (sizeof(Float) == sizeof(float) && ((e0 == 0) | (e1 == 0) | (e2 == 0))) {
+            e0 = Float(double(x1) * double(y2) - double(y1) * double(x2));
+            e1 = Float(double(x2) * double(y0) - double(y2) * double(x0));
+            e2 = Float(double(x0) * double(y1) - double(y0) * double(x1));
+        }
+        if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0)))
+            return false;
+    }
     Float det = e0 + e1 + e2;
     if (det == 0) return false;
     // Compute scaled hit distance to triangle and test against ray t range

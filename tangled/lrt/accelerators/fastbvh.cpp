@@ -55,8 +55,10 @@ static inline Float MaxAbs(Float a, Float b, Float c) {
 // Define the LRT_ALWAYS_INLINE macro
 #if defined(__GNUC__) || defined(__clang__)
 #define LRT_ALWAYS_INLINE inline __attribute__((always_inline))
+#define LRT_ALWAYS_INLINE_LAMBDA __attribute__((always_inline))
 #else
 #define LRT_ALWAYS_INLINE inline
+#define LRT_ALWAYS_INLINE_LAMBDA
 #endif
 // FastBVHAccel Local Declarations
 struct FastBVHBuildPrim {
@@ -212,6 +214,9 @@ static const Triangle *GetTriangle(const Primitive *p) {
     return static_cast<const Triangle *>(s);
 }
 
+static void DefaultUVDerivatives(const Vector3f &dp02, const Vector3f &dp12,
+                                 Vector3f *dpdu, Vector3f *dpdv);
+
 static bool StoreTriangle(FastTriangle *ft, FastTriangleInfo *info,
                           const Triangle *tri) {
     Point3f q[3];
@@ -222,10 +227,13 @@ static bool StoreTriangle(FastTriangle *ft, FastTriangleInfo *info,
         ft->c[a][3] = 0;
     }
     *info = {tri, tri->FaceIndex(), tri->FlipsNormal(),
-             !tri->HasVertexAttributes(), Normal3f(0, 0, 0)};
+             !tri->HasVertexAttributes(), false, Normal3f(0, 0, 0)};
     if (info->plain) {
         Vector3f dp02 = q[0] - q[2], dp12 = q[1] - q[2];
         info->n = Normal3f(Normalize(Cross(dp02, dp12)));
+        Vector3f dpdu, dpdv;
+        DefaultUVDerivatives(dp02, dp12, &dpdu, &dpdv);
+        info->parallelDerivatives = Cross(dpdu, dpdv).LengthSquared() == 0;
     }
     return true;
 }
@@ -341,10 +349,9 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     __m128 xNext = _mm_shuffle_ps(xs, xs, _MM_SHUFFLE(3, 0, 2, 1));
     __m128 yNext = _mm_shuffle_ps(ys, ys, _MM_SHUFFLE(3, 0, 2, 1));
     __m128 es = _mm_sub_ps(_mm_mul_ps(xs, yNext), _mm_mul_ps(ys, xNext));
-    // The sign bits are the signs where the magnitudes are greater than zero
-    // (neither zero nor NaN); reject if all three are and the signs differ
-    __m128 magnitude = _mm_andnot_ps(_mm_set1_ps(-0.f), es);
-    __m128 nonzeroLanes = _mm_cmpgt_ps(magnitude, _mm_setzero_ps());
+    // The sign bits are the signs where the squares are greater than zero
+    // (not zero, NaN or tiny); reject if all three are and the signs differ
+    __m128 nonzeroLanes = _mm_cmpgt_ps(_mm_mul_ps(es, es), _mm_setzero_ps());
     unsigned nonzero = unsigned(_mm_movemask_ps(nonzeroLanes)) & 7u;
     unsigned negative = unsigned(_mm_movemask_ps(es)) & 7u;
     if (nonzero == 7u && negative != 0 && negative != 7u) return false;
@@ -363,6 +370,7 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     Float y0 = lane[4][0], y1 = lane[4][1], y2 = lane[4][2];
     Float e0 = lane[5][1], e1 = lane[5][2], e2 = lane[5][0];
     const Float Sz = fr.Sz;
+    const bool signsTested = nonzero == 7u;
 #else
     // Translate and permute the vertices with the ray's axes
     const int kx = fr.kx, ky = fr.ky, kz = fr.kz;
@@ -382,15 +390,18 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     Float e0 = x1 * y2 - y1 * x2;
     Float e1 = x2 * y0 - y2 * x0;
     Float e2 = x0 * y1 - y0 * x1;
+    const bool signsTested = false;
 #endif
-    // Test the signs of the edge functions with few branches
-    if (sizeof(Float) == sizeof(float) && ((e0 == 0) | (e1 == 0) | (e2 == 0))) {
-        e0 = Float(double(x1) * double(y2) - double(y1) * double(x2));
-        e1 = Float(double(x2) * double(y0) - double(y2) * double(x0));
-        e2 = Float(double(x0) * double(y1) - double(y0) * double(x1));
+    if (!signsTested) {
+        // Test the signs of the edge functions with few branches
+        if (sizeof(Float) == sizeof(float) && ((e0 == 0) | (e1 == 0) | (e2 == 0))) {
+            e0 = Float(double(x1) * double(y2) - double(y1) * double(x2));
+            e1 = Float(double(x2) * double(y0) - double(y2) * double(x0));
+            e2 = Float(double(x0) * double(y1) - double(y0) * double(x1));
+        }
+        if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0)))
+            return false;
     }
-    if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0)))
-        return false;
     Float det = e0 + e1 + e2;
     if (det == 0) return false;
     // Compute scaled hit distance to triangle and test against ray t range
@@ -426,9 +437,8 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     return true;
 }
 // FastBVHAccel Utility Functions
-static inline void DefaultUVDerivatives(const Vector3f &dp02,
-                                        const Vector3f &dp12,
-                                        Vector3f *dpdu, Vector3f *dpdv) {
+static void DefaultUVDerivatives(const Vector3f &dp02, const Vector3f &dp12,
+                                 Vector3f *dpdu, Vector3f *dpdv) {
     Point2f uv[3];
     Triangle::GetDefaultUVs(uv);
     Vector2f duv02 = uv[0] - uv[2], duv12 = uv[1] - uv[2];
@@ -451,7 +461,7 @@ static inline void CompletePlainTriangle(const Ray &ray, const Point3f &p0,
     Triangle::GetDefaultUVs(uv);
     Vector3f dpdu, dpdv;
     DefaultUVDerivatives(dp02, dp12, &dpdu, &dpdv);
-    if (Cross(dpdu, dpdv).LengthSquared() == 0)
+    if (info.parallelDerivatives)
         CoordinateSystem(Vector3f(info.n), &dpdu, &dpdv);
     // Compute error bounds for triangle intersection
     Float xAbsSum = std::abs(b0 * p0.x) + std::abs(b1 * p1.x) +
@@ -521,7 +531,14 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
     const __m128 ix = _mm_set1_ps(r.ix), iy = _mm_set1_ps(r.iy),
                  iz = _mm_set1_ps(r.iz);
     const __m128 widen = _mm_set1_ps(1 + 2 * gamma(3));
+    __m128 tMaxLanes;
 #endif
+    Float tMaxWidened;
+    // Copy the ray's tMax into the traversal's variables
+    tMaxWidened = ray.tMax * (1 + 2 * gamma(3));
+    #if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
+    tMaxLanes = _mm_set1_ps(ray.tMax);
+    #endif
     if (root.IsLeaf()) {
         const FastBVHNode &node = rootNode;
         // Intersect the ray with the child boxes of node
@@ -543,7 +560,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
             __m128 tNear = _mm_max_ps(tx0, _mm_setzero_ps());
             tNear = _mm_max_ps(ty0, tNear);
             tNear = _mm_max_ps(tz0, tNear);
-            __m128 tFar = _mm_min_ps(tx1, _mm_set1_ps(ray.tMax));
+            __m128 tFar = _mm_min_ps(tx1, tMaxLanes);
             tFar = _mm_min_ps(ty1, tFar);
             tFar = _mm_min_ps(tz1, tFar);
             _mm_storeu_ps(t, tNear);
@@ -592,7 +609,7 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 __m128 tNear = _mm_max_ps(tx0, _mm_setzero_ps());
                 tNear = _mm_max_ps(ty0, tNear);
                 tNear = _mm_max_ps(tz0, tNear);
-                __m128 tFar = _mm_min_ps(tx1, _mm_set1_ps(ray.tMax));
+                __m128 tFar = _mm_min_ps(tx1, tMaxLanes);
                 tFar = _mm_min_ps(ty1, tFar);
                 tFar = _mm_min_ps(tz1, tFar);
                 _mm_storeu_ps(t, tNear);
@@ -687,13 +704,19 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 continue;
             }
             }
-        } else if (visitLeaf(current))
-            return;
+        } else {
+            if (visitLeaf(current)) return;
+            // Copy the ray's tMax into the traversal's variables
+            tMaxWidened = ray.tMax * (1 + 2 * gamma(3));
+            #if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
+            tMaxLanes = _mm_set1_ps(ray.tMax);
+            #endif
+        }
         // Pop the next child that the ray may still reach, or return
         do {
             if (stackSize == 0) return;
             --stackSize;
-        } while (stack[stackSize].tEntry > ray.tMax * (1 + 2 * gamma(3)));
+        } while (stack[stackSize].tEntry > tMaxWidened);
         current = stack[stackSize].child;
     }
 }
@@ -918,7 +941,7 @@ bool FastBVHAccel::Intersect(const Ray &ray,
     bool hitOther = false;
     const FastTriangle *tris = triangles.data();
     TraverseFastBVH(nodes.data(), tris, root, rootNode, ray, fr,
-                    [&](FastBVHChild leaf) {
+                    [&](FastBVHChild leaf) LRT_ALWAYS_INLINE_LAMBDA {
         // Find the closest hit among a fast leaf's primitives
         const FastTriangle *end = tris + leaf.offset + leaf.nTriangles;
         for (const FastTriangle *tri = tris + leaf.offset; tri != end; ++tri) {

@@ -73,6 +73,7 @@ struct FastTriangleInfo {
     int faceIndex;
     bool flipNormal;
     bool plain;  // the mesh has no normals, tangents or (u,v) per vertex
+    bool parallelDerivatives;  // plain: the default (u,v) give no frame
     Normal3f n;  // the geometric normal, for plain triangles
 };
 // FastBVHAccel Inline Functions

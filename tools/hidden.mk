@@ -22,7 +22,7 @@ list-hidden-tests:
 	@$(foreach n,$(HIDDEN_NUMBERS),echo "asof$(ASOF)/hidden-ch$(n)=$(DIR)/hidden/ch$(n)";)
 
 $(DIR)/obj/hidden/%.o: $(HIDDEN)/%.cpp $(PCH) | compile-links hidden-link
-	$(call compile,hidden/$*.cpp,$(TEST_FLAGS))
+	$(call compile,hidden/$*.cpp,$(TEST_FLAGS),$(TEST_CXXFLAGS))
 
 # The compile directory's link to the hidden tests (see compile in asof.mk):
 # made again on each run, as HIDDEN may name another directory each time.

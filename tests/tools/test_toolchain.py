@@ -249,6 +249,59 @@ class IncrementalBuildTest(unittest.TestCase):
         self.assertIn('test_pch.h.gch', result.stderr)
 
 
+class RunTestsTest(unittest.TestCase):
+    """tools/runtests.py runs a test binary whose bytes equal an earlier
+    one's only once (the code as of a later chapter often links exactly the
+    same program), and reports its results under both labels."""
+
+    # A stand-in for a GoogleTest binary: it notes each run in $RUNS_LOG and
+    # writes the JSON report GoogleTest would, one test passing and, if FAILS
+    # is set in its text, one failing.
+    PROGRAM = """#!/usr/bin/env python3
+import json, os, sys
+FAILS = %s
+with open(os.environ['RUNS_LOG'], 'a') as f:
+    f.write(sys.argv[0] + '\\n')
+tests = [{'name': 'Passes', 'status': 'RUN', 'result': 'COMPLETED'}]
+if FAILS:
+    tests.append({'name': 'Fails', 'status': 'RUN', 'result': 'COMPLETED',
+                  'failures': [{'failure': 'expected 1'}]})
+report = [a for a in sys.argv if a.startswith('--gtest_output=json:')][0]
+with open(report[len('--gtest_output=json:'):], 'w') as f:
+    json.dump({'testsuites': [{'name': 'Fake', 'testsuite': tests}]}, f)
+sys.exit(1 if FAILS else 0)
+"""
+
+    def program(self, directory, fails):
+        path = os.path.join(self.tmp, directory, 'ch03')
+        os.makedirs(os.path.dirname(path))
+        with open(path, 'w') as f:
+            f.write(self.PROGRAM % fails)
+        os.chmod(path, 0o755)
+        return path
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, self.tmp)
+
+    def test_identical_binary_runs_once_and_reports_under_both_labels(self):
+        same1, same2 = self.program('05', True), self.program('06', True)
+        other = self.program('07', False)
+        log = os.path.join(self.tmp, 'runs.log')
+        result = subprocess.run(
+            ['python3', os.path.join(TOOLS, 'runtests.py'), '--jobs', '1',
+             'asof05/ch03=' + same1, 'asof06/ch03=' + same2, 'asof07/ch03=' + other],
+            capture_output=True, text=True, env=dict(os.environ, RUNS_LOG=log))
+        with open(log) as f:
+            self.assertEqual(sorted(f.read().split()), [same1, other])
+        self.assertIn('FAILED: asof05/ch03 Fake.Fails', result.stdout)
+        self.assertIn('FAILED: asof06/ch03 Fake.Fails', result.stdout)
+        self.assertRegex(result.stdout, r'asof06/ch03 +1 passed, 1 failed '
+                                        r'\(the program of asof05/ch03\)')
+        self.assertEqual(result.stdout.strip().splitlines()[-1], 'tests: 3 passed, 2 failed')
+        self.assertNotEqual(result.returncode, 0)
+
+
 class WeaveTest(unittest.TestCase):
     """The filter's own reading of the chunks must match noweb's; what it
     writes for footers, code, examples, captions and citations."""

@@ -12,10 +12,10 @@ core. A binary whose bytes equal an earlier one's runs once: the code as of
 chapter 6 often links a chapter's tests into exactly the program that the
 code as of chapter 5 did (nothing they use changed), and the same program in
 the same environment gives the same results, which are then reported under
-both labels. The last line, "tests: N passed, M failed", is the one CI reads; it adds
-", K skipped" when tests were skipped, each listed above it with what it said
-(a course's kit skips the tests that reach a later assignment's stub,
-tests/calls/core.h).
+both labels. The last line, "tests: N passed, M failed", is the one CI
+reads; it adds ", K skipped" when tests were skipped, each listed above it
+with what it said (a course's kit skips the tests that reach a later
+assignment's stub, tests/calls/core.h).
 """
 import argparse
 import concurrent.futures

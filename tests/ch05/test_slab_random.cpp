@@ -489,7 +489,7 @@ EXERCISE_TEST(Ex5_11_SlabTest, ConservativeForTrianglesInsideTheBox) {
         // Whenever the box test says miss, binary128 decides.
         bool triangle = OracleTriangleHit<Wide>(v, r, &tHit);
         if (!hit) {
-            Exact tExact;
+            Exact tExact = 0;  // read below even when there is no hit
             ++exactVerdicts;
             triangle = OracleTriangleHit<Exact>(v, r, &tExact);
             tHit = Wide(tExact);

@@ -385,8 +385,10 @@ EXERCISE_TEST(Ex3_23_Triangle, AgreesWithDoublePrecisionOracle) {
             double tRel = std::min(std::abs(oh.t), std::abs(oh.t - tMax)) /
                           std::max(std::abs(oh.t), 1e-300);
             double r2 = 0;
-            for (const D3 &q : pd)
-                r2 = std::max(r2, DotD(Sub(q, ToD(of)), Sub(q, ToD(of))));
+            for (const D3 &q : pd) {
+                D3 fromOrigin = Sub(q, ToD(of));
+                r2 = std::max(r2, DotD(fromOrigin, fromOrigin));
+            }
             double m =
                 std::min(std::abs(oh.margin) * area2 / r2, tRel) * cosT;
             worstDisagreementMargin = std::max(worstDisagreementMargin, m);

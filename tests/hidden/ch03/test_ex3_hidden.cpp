@@ -543,9 +543,10 @@ EXERCISE_TEST(Ex3_23_RayTriangleHidden, UnnormalizedAndPlanarDirectionsAgreeWith
         Ray ray(o, len * d);
         Exact x = ExactHit(p[0], p[1], p[2], ray);
         if (!x.valid) continue;
-        // The triangle must not be seen nearly edge-on.
-        Vector3f ng = Normalize(Cross(p[1] - p[0], p[2] - p[0]));
-        if (std::abs(Dot(ng, d)) < 0.05f) continue;
+        // The triangle must not be seen nearly edge-on. (e: the normal, as
+        // long as twice the area.)
+        Vector3f e = Cross(p[1] - p[0], p[2] - p[0]);
+        if (std::abs(Dot(Normalize(e), d)) < 0.05f) continue;
         if (std::abs(x.margin()) < 1e-4L) continue;
         if (std::abs(x.t * len) < 1e-3L) continue;  // starts on the plane
         if (c % 3 == 0 && x.t > 0)
@@ -577,7 +578,6 @@ EXERCISE_TEST(Ex3_23_RayTriangleHidden, UnnormalizedAndPlanarDirectionsAgreeWith
         // from the origin grows against the triangle's area seen along d (a
         // sliver, or a triangle far off the origin): each edge function is a
         // difference of products of size R^2, divided by that area.
-        Vector3f e = Cross(p[1] - p[0], p[2] - p[0]);
         LD seen = std::abs(LD(e.x) * d.x + LD(e.y) * d.y + LD(e.z) * d.z) /
                   std::max({std::abs(LD(d.x)), std::abs(LD(d.y)),
                             std::abs(LD(d.z))});

@@ -8,7 +8,10 @@ passed only when that report says so, so a binary that dies midway loses its
 remaining tests instead of passing them. A binary's tests are split into
 GoogleTest shards (GTEST_TOTAL_SHARDS), and --jobs shards of all the binaries
 run at a time: the tests are independent processes' work, so they use every
-core. A binary whose bytes equal an earlier one's runs once: the code as of
+core. Each file of Python tests runs in a process of its own, in the same
+pool and ahead of the shards, so that the tools' slow tests (builds of kits,
+graders, the benchmark) run side by side instead of one after another while a
+core waits. A binary whose bytes equal an earlier one's runs once: the code as of
 chapter 6 often links a chapter's tests into exactly the program that the
 code as of chapter 5 did (nothing they use changed), and the same program in
 the same environment gives the same results, which are then reported under
@@ -102,50 +105,95 @@ def content_key(binary):
         return 'missing:' + binary
 
 
-def run_gtests(binaries, jobs):
-    """Runs every binary in `jobs` shards, `jobs` shards at a time."""
-    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        first = {}  # content key -> (label, shards) of the first binary with it
-        runs = []
-        for label, binary in binaries:
-            key = content_key(binary)
-            if key not in first:
-                first[key] = (label, [pool.submit(run_shard, binary, index, jobs)
-                                      for index in range(jobs)])
-            first_label, shards = first[key]
-            runs.append((label, binary, shards, None if first_label == label else first_label))
-        return [summarize(label, binary, [f.result() for f in shards], same_as)
-                for label, binary, shards, same_as in runs]
+def submit_gtests(pool, binaries, jobs):
+    """Submits every binary in `jobs` shards; returns (label, binary, shards,
+    label of the identical binary whose shards they are, or None)."""
+    first = {}  # content key -> (label, shards) of the first binary with it
+    runs = []
+    for label, binary in binaries:
+        key = content_key(binary)
+        if key not in first:
+            first[key] = (label, [pool.submit(run_shard, binary, index, jobs)
+                                  for index in range(jobs)])
+        first_label, shards = first[key]
+        runs.append((label, binary, shards, None if first_label == label else first_label))
+    return runs
 
 
-def run_python(path):
-    """The tests of a directory, or of one file (a chapter's program, say)."""
+def python_test_files(path):
+    """The files of Python tests in a directory, or the one file given (a
+    chapter's program, say)."""
     if os.path.isfile(path):
-        directory, pattern = os.path.dirname(path), os.path.basename(path)
-    else:
-        directory, pattern = path, 'test*.py'
+        return [path]
+    return sorted(os.path.join(path, name) for name in os.listdir(path)
+                  if name.startswith('test') and name.endswith('.py'))
+
+
+def run_python_file(path):
+    """Runs one file's tests in a Python of its own, so that files run side by
+    side and one that crashes or exits takes nothing else with it:
+    (output, exit status, report or None)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        report = os.path.join(tmp, 'report.json')
+        proc = subprocess.run([sys.executable, os.path.abspath(__file__),
+                               '--python-report', report, path],
+                              stdin=subprocess.DEVNULL, capture_output=True, text=True)
+        try:
+            with open(report) as f:
+                return proc.stdout + proc.stderr, proc.returncode, json.load(f)
+        except (OSError, ValueError):
+            return proc.stdout + proc.stderr, proc.returncode, None
+
+
+def write_python_report(path, report):
+    """In the child: runs the tests of the file `path` and writes what passed
+    and failed to `report`."""
+    directory, pattern = os.path.dirname(path), os.path.basename(path)
     suite = unittest.defaultTestLoader.discover(directory, pattern=pattern,
                                                 top_level_dir=directory)
     result = unittest.TextTestRunner(verbosity=1, stream=sys.stdout).run(suite)
     failed = ['tools %s' % test.id() for test, _ in result.failures + result.errors]
-    passed = result.testsRun - len(failed) - len(result.skipped)
-    print('%-28s %5d passed, %d failed' % ('tools', passed, len(failed)))
-    return passed, failed
+    with open(report, 'w') as f:
+        json.dump({'passed': result.testsRun - len(failed) - len(result.skipped),
+                   'failed': failed}, f)
+
+
+def summarize_python(path, output, code, report):
+    """(passed, failed names) of one file's tests, its output printed."""
+    label = 'tools/' + os.path.basename(path)
+    print(output, end='' if output.endswith('\n') else '\n')
+    if report is None:
+        print('%s: ended (%s) without a report: counted as one failure' % (label, code))
+        return 0, [label + ' (no report)']
+    print('%-28s %5d passed, %d failed' % (label, report['passed'], len(report['failed'])))
+    return report['passed'], report['failed']
 
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument('--python-tests')
+    parser.add_argument('--python-tests', help='a directory of test*.py files, or one file')
+    parser.add_argument('--python-report', help=argparse.SUPPRESS)
     parser.add_argument('--jobs', type=int, default=os.cpu_count() or 1)
     parser.add_argument('binaries', nargs='*', metavar='LABEL=BINARY')
     args = parser.parse_args()
-    passed, failed, skipped = 0, [], []
-    if args.python_tests:
-        p, f = run_python(args.python_tests)
-        passed, failed = passed + p, failed + f
+    if args.python_report:
+        write_python_report(args.binaries[0], args.python_report)
+        return
+    jobs = max(1, args.jobs)
     binaries = [item.split('=', 1) for item in args.binaries]
-    for p, f, s in run_gtests(binaries, max(1, args.jobs)):
-        passed, failed, skipped = passed + p, failed + f, skipped + s
+    files = python_test_files(args.python_tests) if args.python_tests else []
+    passed, failed, skipped = 0, [], []
+    # One pool for all: the Python files first, as they take longest (they
+    # build kits, graders, the benchmark), then the binaries' shards.
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        python_runs = [(path, pool.submit(run_python_file, path)) for path in files]
+        gtest_runs = submit_gtests(pool, binaries, jobs)
+        for path, future in python_runs:
+            p, f = summarize_python(path, *future.result())
+            passed, failed = passed + p, failed + f
+        for label, binary, shards, same_as in gtest_runs:
+            p, f, s = summarize(label, binary, [f.result() for f in shards], same_as)
+            passed, failed, skipped = passed + p, failed + f, skipped + s
     for name in skipped:
         print('SKIPPED:', name)
     for name in failed:

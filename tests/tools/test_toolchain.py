@@ -301,6 +301,59 @@ sys.exit(1 if FAILS else 0)
         self.assertEqual(result.stdout.strip().splitlines()[-1], 'tests: 3 passed, 2 failed')
         self.assertNotEqual(result.returncode, 0)
 
+    # Two files of Python tests that can pass only side by side: each marks
+    # that it started, then waits up to a minute for the other's mark.
+    MEETS = """import os, time, unittest
+class Meet(unittest.TestCase):
+    def test_meets_the_other_file(self):
+        here = os.path.dirname(os.path.abspath(__file__))
+        open(os.path.join(here, '%s.started'), 'w').close()
+        other = os.path.join(here, '%s.started')
+        deadline = time.time() + 60
+        while not os.path.exists(other) and time.time() < deadline:
+            time.sleep(0.05)
+        self.assertTrue(os.path.exists(other), 'the other file did not run alongside')
+"""
+
+    def python_tests(self, files):
+        directory = os.path.join(self.tmp, 'pytests')
+        os.makedirs(directory)
+        for name, text in files.items():
+            with open(os.path.join(directory, name), 'w') as f:
+                f.write(text)
+        return directory
+
+    def run_python_tests(self, directory, jobs):
+        return subprocess.run(['python3', os.path.join(TOOLS, 'runtests.py'), '--jobs',
+                               str(jobs), '--python-tests', directory],
+                              capture_output=True, text=True, timeout=300)
+
+    def test_python_test_files_run_side_by_side(self):
+        directory = self.python_tests({'test_a.py': self.MEETS % ('a', 'b'),
+                                       'test_b.py': self.MEETS % ('b', 'a')})
+        result = self.run_python_tests(directory, 2)
+        self.assertEqual(result.stdout.strip().splitlines()[-1], 'tests: 2 passed, 0 failed',
+                         result.stdout)
+        self.assertRegex(result.stdout, r'tools/test_a\.py +1 passed, 0 failed')
+
+    def test_python_file_that_exits_midway_is_a_failure(self):
+        directory = self.python_tests({
+            'test_exits.py': 'import os, unittest\n'
+                             'class Exits(unittest.TestCase):\n'
+                             '    def test_exits(self):\n'
+                             '        os._exit(0)\n',
+            'test_fails.py': 'import unittest\n'
+                             'class Fails(unittest.TestCase):\n'
+                             '    def test_passes(self):\n'
+                             '        pass\n'
+                             '    def test_fails(self):\n'
+                             '        self.fail("expected")\n'})
+        result = self.run_python_tests(directory, 1)
+        self.assertIn('FAILED: tools/test_exits.py (no report)', result.stdout)
+        self.assertIn('FAILED: tools test_fails.Fails.test_fails', result.stdout)
+        self.assertEqual(result.stdout.strip().splitlines()[-1], 'tests: 1 passed, 2 failed')
+        self.assertNotEqual(result.returncode, 0)
+
 
 class WeaveTest(unittest.TestCase):
     """The filter's own reading of the chunks must match noweb's; what it

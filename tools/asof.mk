@@ -28,10 +28,10 @@ CXXFLAGS := -std=c++17 -g $(OPT) -ffp-contract=off -Wall -Wextra -Werror \
 #
 # -g1 for the tests: line tables and function names, so a crash's backtrace
 # and a sanitizer's report still name the test's file and line, but no
-# description of local variables and types. Writing those out is a third of
-# a test's compile (tests/ch06/test_bvh.cpp, about 14 against 9 s of CPU) and
-# makes its object nearly four times larger. The library keeps -g, so a debugger shows
-# the book's code in full.
+# description of local variables and types. Writing those out is over a third
+# of a test's compile (tests/ch06/test_bvh.cpp, about 14 against 9 s of CPU)
+# and makes its object nearly four times larger. The library keeps -g, so a
+# debugger shows the book's code in full.
 TEST_CXXFLAGS := $(patsubst -g,-g1,$(patsubst -O2,-O1 -finline-functions \
                    -finline-small-functions,$(CXXFLAGS)))
 LDFLAGS := $(if $(SANITIZE),$(SANITIZERS))

@@ -10,12 +10,12 @@ GoogleTest shards (GTEST_TOTAL_SHARDS), and --jobs shards of all the binaries
 run at a time: the tests are independent processes' work, so they use every
 core. Each file of Python tests runs in a process of its own, in the same
 pool and ahead of the shards, so that the tools' slow tests (builds of kits,
-graders, the benchmark) run side by side instead of one after another while a
-core waits. A binary whose bytes equal an earlier one's runs once: the code as of
-chapter 6 often links a chapter's tests into exactly the program that the
-code as of chapter 5 did (nothing they use changed), and the same program in
-the same environment gives the same results, which are then reported under
-both labels. The last line, "tests: N passed, M failed", is the one CI
+graders, the benchmark) run side by side instead of one after another while
+a core waits. A binary whose bytes equal an earlier one's runs once: the code
+as of chapter 6 often links a chapter's tests into exactly the program that
+the code as of chapter 5 did (nothing they use changed), and the same program
+in the same environment gives the same results, which are then reported
+under both labels. The last line, "tests: N passed, M failed", is the one CI
 reads; it adds ", K skipped" when tests were skipped, each listed above it
 with what it said (a course's kit skips the tests that reach a later
 assignment's stub, tests/calls/core.h).

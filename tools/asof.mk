@@ -31,8 +31,10 @@ CXXFLAGS := -std=c++17 -g $(OPT) -ffp-contract=off -Wall -Wextra -Werror \
 # description of local variables and types. Writing those out is over a third
 # of a test's compile (tests/ch06/test_bvh.cpp, about 14 against 9 s of CPU)
 # and makes its object nearly four times larger. The library keeps -g, so a
-# debugger shows the book's code in full.
-TEST_CXXFLAGS := $(patsubst -g,-g1,$(patsubst -O2,-O1 -finline-functions \
+# debugger shows the book's code in full; TEST_DEBUG=-g gives the tests, and
+# the code they compile from the book's headers, full debugging information.
+TEST_DEBUG ?= -g1
+TEST_CXXFLAGS := $(patsubst -g,$(TEST_DEBUG),$(patsubst -O2,-O1 -finline-functions \
                    -finline-small-functions,$(CXXFLAGS)))
 LDFLAGS := $(if $(SANITIZE),$(SANITIZERS))
 

@@ -238,6 +238,26 @@ class IncrementalBuildTest(unittest.TestCase):
             self.assertEqual(result.returncode == 0, passes,
                              'Value() = %d:\n%s%s' % (value, result.stdout, result.stderr))
 
+    def test_tests_get_line_tables_unless_told_full_debugging(self):
+        # The flags of the test's compile (make -n: nothing is compiled),
+        # from the real build's -g -O2.
+        def test_compile(*extra):
+            result = subprocess.run(
+                ['make', '--no-print-directory', '-n', '-f', 'tools/asof.mk', 'ASOF=02',
+                 'CHAPTERS=chapters/02-value.md', 'BUILD=build',
+                 'CXXFLAGS=-std=c++17 -g -O2 -Wall'] + list(extra) + ['tests'],
+                cwd=self.checkout, env=self.env, capture_output=True, text=True)
+            lines = [line for line in result.stdout.splitlines()
+                     if '-c tests/ch02/test_value.cpp' in line]
+            self.assertEqual(len(lines), 1, result.stdout + result.stderr)
+            return lines[0].split()
+        default, full = test_compile(), test_compile('TEST_DEBUG=-g')
+        self.assertIn('-g1', default)
+        self.assertNotIn('-g', default)
+        self.assertIn('-g', full)
+        self.assertNotIn('-g1', full)
+        self.assertIn('-O1', full)
+
     def test_unfit_precompiled_header_fails_the_build(self):
         self.assertEqual(self.build_and_run(1).returncode, 0)
         pch = os.path.join(self.checkout, 'build/float/pch/test_pch.h.gch')

@@ -42,23 +42,32 @@ def skip_reason(output, test):
     return match.group(1) if match else 'no reason given'
 
 
-def run_shard(binary, index, total):
-    """Runs one shard of a GoogleTest binary: (output, exit status, report)."""
-    env = dict(os.environ, GTEST_TOTAL_SHARDS=str(total), GTEST_SHARD_INDEX=str(index))
+def run_with_report(command, env=None, timeout=None):
+    """Runs command(report), a command that writes a JSON report to the path
+    `report`: (output, exit status, the report, or None if none was written)."""
     with tempfile.TemporaryDirectory() as tmp:
         report = os.path.join(tmp, 'report.json')
         try:
-            proc = subprocess.run([binary, '--gtest_brief=1', '--gtest_output=json:' + report],
-                                  capture_output=True, text=True, timeout=TIME_LIMIT, env=env)
+            proc = subprocess.run(command(report), capture_output=True, text=True,
+                                  timeout=timeout, env=env)
             output, code = proc.stdout + proc.stderr, proc.returncode
         except subprocess.TimeoutExpired as e:
             output, code = (e.stdout or b'').decode(errors='replace'), 'timeout'
         try:
             with open(report) as f:
-                suites = json.load(f)['testsuites']
-        except (OSError, ValueError, KeyError):
-            suites = None
-    return output, code, suites
+                return output, code, json.load(f)
+        except (OSError, ValueError):
+            return output, code, None
+
+
+def run_shard(binary, index, total):
+    """Runs one shard of a GoogleTest binary: (output, exit status, its test
+    suites or None)."""
+    env = dict(os.environ, GTEST_TOTAL_SHARDS=str(total), GTEST_SHARD_INDEX=str(index))
+    output, code, report = run_with_report(
+        lambda report: [binary, '--gtest_brief=1', '--gtest_output=json:' + report],
+        env=env, timeout=TIME_LIMIT)
+    return output, code, report.get('testsuites') if isinstance(report, dict) else None
 
 
 def summarize(label, binary, shards, same_as=None):
@@ -133,16 +142,8 @@ def run_python_file(path):
     """Runs one file's tests in a Python of its own, so that files run side by
     side and one that crashes or exits takes nothing else with it:
     (output, exit status, report or None)."""
-    with tempfile.TemporaryDirectory() as tmp:
-        report = os.path.join(tmp, 'report.json')
-        proc = subprocess.run([sys.executable, os.path.abspath(__file__),
-                               '--python-report', report, path],
-                              stdin=subprocess.DEVNULL, capture_output=True, text=True)
-        try:
-            with open(report) as f:
-                return proc.stdout + proc.stderr, proc.returncode, json.load(f)
-        except (OSError, ValueError):
-            return proc.stdout + proc.stderr, proc.returncode, None
+    return run_with_report(lambda report: [sys.executable, os.path.abspath(__file__),
+                                           '--python-report', report, path])
 
 
 def write_python_report(path, report):

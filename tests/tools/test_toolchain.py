@@ -217,15 +217,18 @@ class IncrementalBuildTest(unittest.TestCase):
             'MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'CHAPTERS', 'BUILD', 'FLOAT', 'SANITIZE')}
         self.env['CCACHE_DIR'] = self.ccache
 
+    def asof_make(self, cxxflags, *args):
+        """Runs tools/asof.mk as of the one chapter, in the checkout."""
+        return subprocess.run(['make', '--no-print-directory', '-f', 'tools/asof.mk', 'ASOF=02',
+                               'CHAPTERS=chapters/02-value.md', 'BUILD=build',
+                               'CXXFLAGS=' + cxxflags] + list(args),
+                              cwd=self.checkout, env=self.env, capture_output=True, text=True)
+
     def build_and_run(self, value):
         with open(os.path.join(self.checkout, 'chapters', '02-value.md'), 'w') as f:
             f.write(self.CHAPTER % value)
-        make = ['make', '--no-print-directory', '-f', 'tools/asof.mk', 'ASOF=02',
-                'CHAPTERS=chapters/02-value.md', 'BUILD=build',
-                'CXXFLAGS=-std=c++17 -Wall -Werror']
         for goal in ('tangle', 'tests'):
-            result = subprocess.run(make + [goal], cwd=self.checkout, env=self.env,
-                                    capture_output=True, text=True)
+            result = self.asof_make('-std=c++17 -Wall -Werror', goal)
             if result.returncode != 0:
                 return result
         self.assertIn('-include pch/test_pch.h', result.stdout)
@@ -242,11 +245,7 @@ class IncrementalBuildTest(unittest.TestCase):
         # The flags of the test's compile (make -n: nothing is compiled),
         # from the real build's -g -O2.
         def test_compile(*extra):
-            result = subprocess.run(
-                ['make', '--no-print-directory', '-n', '-f', 'tools/asof.mk', 'ASOF=02',
-                 'CHAPTERS=chapters/02-value.md', 'BUILD=build',
-                 'CXXFLAGS=-std=c++17 -g -O2 -Wall'] + list(extra) + ['tests'],
-                cwd=self.checkout, env=self.env, capture_output=True, text=True)
+            result = self.asof_make('-std=c++17 -g -O2 -Wall', '-n', *extra, 'tests')
             lines = [line for line in result.stdout.splitlines()
                      if '-c tests/ch02/test_value.cpp' in line]
             self.assertEqual(len(lines), 1, result.stdout + result.stderr)

@@ -32,13 +32,37 @@ LAST := $(lastword $(NUMBERS))
 PREFIXES := $(or $(CH),$(subst last,$(LAST),$(UPTO)),$(NUMBERS))
 ASOF = $(MAKE) --no-print-directory -f tools/asof.mk
 export CHAPTERS BUILD FLOAT SANITIZE
+include tools/say.mk
 
 .PHONY: all deps lint tangle lib test book clean
 
 all: $(LINTED) tangle lib bench-build compile_commands.json book
 
 deps:
-	@tools/deps.sh
+	@tools/deps.sh $(DEPS_SET)
+
+# Every target needs Debian's packages (tools/deps.sh) before its first
+# recipe runs a packaged program: noweb, pandoc, TeX, ccache, bubblewrap,
+# chromium. GNU make brings the makefiles it includes up to date before it
+# builds any goal, and runs their rules even under make -n, so a rule that
+# makes an included file runs first, whatever the goals. tools/deps.sh only
+# looks for files when nothing is missing (a fraction of a second), so it
+# runs on every make: a package removed since the last build is caught too.
+# Grading needs fewer packages (a Gradescope image has no TeX); make clean
+# and make deps none.
+NO_DEPS_GOALS := clean deps
+GRADE_GOALS := grade grade-batch gradescope
+DEPS_SET := $(if $(filter-out $(GRADE_GOALS),$(or $(MAKECMDGOALS),all)),,grade)
+# (MAKE_RESTARTS: make starts again once it has made the file; the check has
+# just run.)
+ifneq ($(filter-out $(NO_DEPS_GOALS),$(or $(MAKECMDGOALS),all)),)
+ifeq ($(MAKE_RESTARTS),)
+include $(BUILD)/deps.mk
+endif
+endif
+$(BUILD)/deps.mk: FORCE
+	tools/deps.sh $(DEPS_SET)
+	@[ -f $@ ] || { mkdir -p $(@D) && echo '# tools/deps.sh found every package' > $@; }
 
 # make lint always checks. What needs the checked chapters depends on a stamp
 # instead, which the checks renew only when a chapter, a test or a checker
@@ -48,11 +72,12 @@ LINT = python3 tools/lint.py --book $(CHAPTERS) && \
        python3 tools/exercises.py lint $(CHAPTERS)
 LINTED := $(BUILD)/linted.stamp
 
-lint: | deps
+lint:
 	$(LINT)
 
-$(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/lint.py tools/exercises.py | deps
-	$(LINT)
+$(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/lint.py tools/exercises.py
+	$(call say,LINT,the chapters and the names of their exercise tests)
+	$(Q)$(LINT)
 	@touch $@
 
 .PHONY: FORCE
@@ -61,11 +86,12 @@ $(BUILD)/lint-inputs.list: FORCE
 	@echo $(LINT_INPUTS) | cpif $@
 
 tangle: $(LINTED)
-	python3 tools/tangle.py --out tangled $(CHAPTERS)
+	$(call say,TANGLE,tangled/)
+	$(Q)python3 tools/tangle.py --out tangled $(CHAPTERS)
 
 lib: $(LINTED)
-	$(ASOF) ASOF=$(LAST) tangle
-	$(ASOF) ASOF=$(LAST) -j$(JOBS) lib
+	$(Q)$(ASOF) ASOF=$(LAST) tangle
+	$(Q)$(ASOF) ASOF=$(LAST) -j$(JOBS) lib
 
 # The code as of chapter N is the tangle of chapters 1..N; it must compile and
 # pass the tests of chapters 1..N, so no chapter leans on a later one. The
@@ -74,6 +100,10 @@ lib: $(LINTED)
 # whose tests run it from Python.
 PYTHON_TESTS_09 := tests/tools/test_bench.py
 test: $(LINTED)
+	@if [ -z "$$(find $(BUILD) -path '*/obj/tests' -print -quit)" ]; then \
+	    echo "make test: the first build compiles each chapter's tests as of every" \
+	         "later chapter (about ten minutes on two cores); later builds compile" \
+	         "only what changed"; fi
 	@bins=(); \
 	for n in $(PREFIXES); do \
 	    $(ASOF) ASOF=$$n ONLY=$(CH) tangle; \
@@ -84,7 +114,8 @@ test: $(LINTED)
 	    --python-tests ,$(PYTHON_TESTS_$(CH))),--python-tests tests/tools)) "$${bins[@]}"
 
 compile_commands.json: tangle
-	python3 tools/compile_commands.py --src tangled > $@
+	$(call say,GEN,$@)
+	$(Q)python3 tools/compile_commands.py --src tangled > $@
 
 book: $(BUILD)/book.pdf
 
@@ -93,8 +124,9 @@ $(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/weave.sh
                    tools/tikz-preamble.tex \
                    tools/highlight.theme tools/layout_check.py \
                    $(wildcard figures/*) | $(LINTED)
-	tools/weave.sh $(BUILD)/book book.md $(CHAPTERS)
-	cp $(BUILD)/book/book.pdf $@
+	$(call say,WEAVE,$@ (pandoc then pdflatex until the references settle))
+	$(Q)tools/weave.sh $(BUILD)/book book.md $(CHAPTERS)
+	$(Q)cp $(BUILD)/book/book.pdf $@
 
 clean:
 	rm -rf $(BUILD) compile_commands.json

@@ -6,6 +6,7 @@
 
 SHELL := /bin/bash
 .SHELLFLAGS := -eo pipefail -c
+include tools/say.mk
 
 CXX ?= g++
 VARIANT := $(if $(SANITIZE),sanitize,$(if $(filter double,$(FLOAT)),double,float))
@@ -47,6 +48,10 @@ TEST_NUMBERS := $(foreach c,$(ASOF_CHAPTERS),$(if $(ONLY),$(filter $(ONLY),$(cal
 TEST_NUMBERS := $(foreach n,$(TEST_NUMBERS),$(if $(wildcard tests/ch$(n)/*.cpp),$(n)))
 
 DIR := $(BUILD)/$(VARIANT)/asof/$(ASOF)
+# How the short lines name this build: "as of chapter 5", "as of chapter 5,
+# double". (A comma in a $(call)'s text would end its argument.)
+comma := ,
+AS_OF := as of chapter $(patsubst 0%,%,$(ASOF))$(if $(filter-out float,$(VARIANT)),$(comma) $(VARIANT))
 SRC := $(DIR)/src
 LIB_SRCS := $(shell find $(SRC)/lrt -name '*.cpp' 2>/dev/null | sort)
 LIB_OBJS := $(patsubst $(SRC)/%.cpp,$(DIR)/obj/lib/%.o,$(LIB_SRCS))
@@ -66,7 +71,8 @@ tangle: $(DIR)/tangled.stamp
 $(DIR)/tangled.stamp: $(ASOF_CHAPTERS) $(DIR)/chapters.list tools/tangle.py \
                       tools/exercise_filter.py tools/fragment_comments.py
 	@mkdir -p $(SRC)
-	python3 tools/tangle.py --line-directives --out $(SRC) $(ASOF_CHAPTERS)
+	$(call say,TANGLE,$(SRC) (the code $(AS_OF)))
+	$(Q)python3 tools/tangle.py --line-directives --out $(SRC) $(ASOF_CHAPTERS)
 	@touch $@
 
 # The list of chapters, rewritten only when it changes (a chapter renamed or
@@ -84,8 +90,9 @@ list-tests:
 	@$(foreach n,$(TEST_NUMBERS),echo "asof$(ASOF)/ch$(n)=$(DIR)/tests/ch$(n)";)
 
 $(LIB): $(LIB_OBJS)
-	rm -f $@
-	ar rcs $@ $^
+	$(call say,AR,liblrt.a ($(AS_OF)))
+	$(Q)rm -f $@
+	$(Q)ar rcs $@ $^
 
 $(DIR)/obj/lib/%.o: $(SRC)/%.cpp | compile-links
 	$(call compile,src/$*.cpp)
@@ -124,9 +131,10 @@ CCACHE_ENV := CCACHE_NOHASHDIR=1 CCACHE_DEPEND=1 CCACHE_INODECACHE=1 \
               CCACHE_SLOPPINESS=include_file_mtime,include_file_ctime,pch_defines,time_macros
 define compile
 @mkdir -p $(@D)
-cd $(CC_DIR) && $(CCACHE_ENV) $(CCACHE) $(CXX) $(or $(3),$(CXXFLAGS)) \
+$(call say,CXX,$(patsubst src/%,%,$(1)) ($(AS_OF)))
+$(Q)cd $(CC_DIR) && $(CCACHE_ENV) $(CCACHE) $(CXX) $(or $(3),$(CXXFLAGS)) \
     -fdebug-prefix-map=$(abspath $(CC_DIR))=. -Isrc $(2) -MD -MP -MT $@ -c $(1) -o $(abspath $@)
-sed -i -E 's#(^| )(src|tests|hidden|pch)/#\1$(CC_DIR)/\2/#g' $(basename $@).d
+$(Q)sed -i -E 's#(^| )(src|tests|hidden|pch)/#\1$(CC_DIR)/\2/#g' $(basename $@).d
 endef
 
 # The test compiles read GoogleTest and the usual standard headers from a
@@ -143,17 +151,18 @@ endef
 
 $(PCH_DIR)/test_pch.h: tools/test_pch.h
 	@mkdir -p $(@D)
-	cp $< $@
+	$(Q)cp $< $@
 
 $(PCH_DIR)/flags: FORCE
 	@mkdir -p $(@D)
 	@echo $(CXX) $(TEST_CXXFLAGS) | cpif $@
 
 $(PCH): $(PCH_DIR)/test_pch.h $(PCH_DIR)/flags
-	cd $(PCH_DIR) && $(CCACHE_ENV) $(CCACHE) $(CXX) $(TEST_CXXFLAGS) \
+	$(call say,PCH,tools/test_pch.h (GoogleTest precompiled for the $(VARIANT) tests))
+	$(Q)cd $(PCH_DIR) && $(CCACHE_ENV) $(CCACHE) $(CXX) $(TEST_CXXFLAGS) \
 	    -fdebug-prefix-map=$(abspath $(PCH_DIR))=. -MD -MP -MT $@ \
 	    -x c++-header -c test_pch.h -o test_pch.h.gch
-	sed -i -E 's#(^| )test_pch\.h#\1$(PCH_DIR)/test_pch.h#g' $(PCH_DIR)/test_pch.h.d
+	$(Q)sed -i -E 's#(^| )test_pch\.h#\1$(PCH_DIR)/test_pch.h#g' $(PCH_DIR)/test_pch.h.d
 
 .PHONY: compile-links
 compile-links:
@@ -166,7 +175,8 @@ define test_binary
 $(DIR)/tests/ch$(1): $(patsubst tests/%.cpp,$(DIR)/obj/tests/%.o,$(wildcard \
                        tests/ch$(1)/*.cpp)) $(if $(LIB_OBJS),$(LIB))
 	@mkdir -p $$(@D)
-	$(CXX) $(LDFLAGS) -o $$@ $$^ -lgtest_main -lgtest -pthread
+	$(call say,LD,tests of chapter $(patsubst 0%,%,$(1)) ($(AS_OF)))
+	$(Q)$(CXX) $(LDFLAGS) -o $$@ $$^ -lgtest_main -lgtest -pthread
 endef
 $(foreach n,$(TEST_NUMBERS),$(eval $(call test_binary,$(n))))
 

@@ -79,10 +79,11 @@ bench: bench-build
 	@echo "make bench: the benchmark is Appendix A's; this book ends before it" >&2; exit 1
 else
 bench-build: $(LINTED) bench-compiler
-	$(BENCH_ASOF) tangle
-	$(BENCH_ASOF) -j$(JOBS) lib
+	$(Q)$(BENCH_ASOF) tangle
+	$(Q)$(BENCH_ASOF) -j$(JOBS) lib
 	@mkdir -p $(dir $(BENCH_BIN))
-	$(BENCH_CXX) $(BENCH_ALL_CXXFLAGS) $(BENCH_RECORD) -I$(BENCH_DIR)/src \
+	$(call say,CXX,bench/bvhbench.cpp ($(BENCH_CXX) $(BENCH_CXXFLAGS)))
+	$(Q)$(BENCH_CXX) $(BENCH_ALL_CXXFLAGS) $(BENCH_RECORD) -I$(BENCH_DIR)/src \
 	    $(BENCH_DIR)/src/bench/bvhbench.cpp $(BENCH_DIR)/liblrt.a \
 	    -lbenchmark -pthread -o $(BENCH_BIN)
 

@@ -32,10 +32,10 @@ EXERCISES_OUT := $(BUILD)/exercises
 KIT_CHOICE := $(if $(PLAN),--plan $(PLAN))$(if $(ASSIGNMENT), --assignment $(ASSIGNMENT)) \
               $(EXERCISE_CHAPTERS)
 
-exercises: | deps
+exercises:
 	python3 tools/exercise_kits.py build --out $(EXERCISES_OUT) $(KIT_CHOICE)
 
-try-exercises: | deps
+try-exercises:
 	python3 tools/exercise_kits.py build --no-book --out $(EXERCISES_OUT) $(KIT_CHOICE)
 	python3 tools/exercise_kits.py try --out $(EXERCISES_OUT) UPTO=last
 

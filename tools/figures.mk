@@ -31,10 +31,11 @@ BENCH_LEVELS_JSON := figures/data/bvhbench-levels.json
 .PHONY: figures figures-build check-figures bench-levels
 
 figures-build: $(LINTED)
-	$(FIGURES_ASOF) tangle
-	$(FIGURES_ASOF) -j$(JOBS) lib
+	$(Q)$(FIGURES_ASOF) tangle
+	$(Q)$(FIGURES_ASOF) -j$(JOBS) lib
 	@mkdir -p $(dir $(FIGURES_BIN))
-	$(CXX) $(FIGURES_CXXFLAGS) -I$(FIGURES_DIR)/src \
+	$(call say,CXX,render/figures.cpp)
+	$(Q)$(CXX) $(FIGURES_CXXFLAGS) -I$(FIGURES_DIR)/src \
 	    $(FIGURES_DIR)/src/render/figures.cpp $(FIGURES_DIR)/liblrt.a \
 	    -o $(FIGURES_BIN)
 

@@ -30,19 +30,19 @@ GRADE_CACHE = $(BUILD)/grade/cache
 GRADE_CHAPTERS = $(filter-out %.md,$(CHAPTERS))
 GRADE_PLAN = $(if $(PLAN),--plan $(PLAN))$(if $(ASSIGNMENT), --assignment $(ASSIGNMENT))
 
-grade: | deps
+grade:
 	@if [ -z "$(SUBMISSION)" ]; then echo "make grade: give SUBMISSION=path" >&2; exit 2; fi
 	python3 tools/grade.py --cache $(GRADE_CACHE) $(if $(OUT),--out $(OUT)) \
 	    $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") $(GRADE_PLAN) $(GRADE_FLAGS) \
 	    $(SUBMISSION)
 
-grade-batch: | deps
+grade-batch:
 	@if [ -z "$(SUBMISSIONS)" ]; then echo "make grade-batch: give SUBMISSIONS=dir" >&2; \
 	    exit 2; fi
 	python3 tools/grade.py --cache $(GRADE_CACHE) --batch $(SUBMISSIONS) \
 	    $(if $(OUT),--out $(OUT)) $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") \
 	    $(GRADE_PLAN) $(GRADE_FLAGS)
 
-gradescope: | deps
+gradescope:
 	python3 tools/gradescope.py --out $(BUILD)/gradescope/autograder.zip \
 	    $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") $(GRADE_PLAN) -- $(GRADE_FLAGS)

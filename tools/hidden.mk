@@ -34,6 +34,7 @@ define hidden_binary
 $(DIR)/hidden/ch$(1): $(patsubst $(HIDDEN)/%.cpp,$(DIR)/obj/hidden/%.o,$(wildcard \
                         $(HIDDEN)/ch$(1)/*.cpp)) $(if $(LIB_OBJS),$(LIB))
 	@mkdir -p $$(@D)
-	$(CXX) $(LDFLAGS) -o $$@ $$^ -lgtest_main -lgtest -pthread
+	$(call say,LD,hidden tests of chapter $(patsubst 0%,%,$(1)) ($(AS_OF)))
+	$(Q)$(CXX) $(LDFLAGS) -o $$@ $$^ -lgtest_main -lgtest -pthread
 endef
 $(foreach n,$(HIDDEN_NUMBERS),$(eval $(call hidden_binary,$(n))))

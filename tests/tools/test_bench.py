@@ -145,7 +145,8 @@ class BenchConfigurationTest(unittest.TestCase):
     def setUpClass(cls):
         cls.tmp = tempfile.TemporaryDirectory()
         cls.build_dir = os.path.join(cls.tmp.name, 'build')
-        cls.build = make('bench-build', 'BUILD=' + cls.build_dir,
+        # V=1: the commands in full, which the tests read.
+        cls.build = make('bench-build', 'V=1', 'BUILD=' + cls.build_dir,
                          'BENCH_CXXFLAGS=-O0 -DLRT_UNUSED_MACRO=1')
         if cls.build.returncode != 0:
             raise AssertionError('make bench-build failed:\n' + cls.build.stdout +

@@ -218,8 +218,10 @@ class IncrementalBuildTest(unittest.TestCase):
         self.env['CCACHE_DIR'] = self.ccache
 
     def asof_make(self, cxxflags, *args):
-        """Runs tools/asof.mk as of the one chapter, in the checkout."""
+        """Runs tools/asof.mk as of the one chapter, in the checkout, printing
+        its commands in full (V=1), which the tests read."""
         return subprocess.run(['make', '--no-print-directory', '-f', 'tools/asof.mk', 'ASOF=02',
+                               'V=1',
                                'CHAPTERS=chapters/02-value.md', 'BUILD=build',
                                'CXXFLAGS=' + cxxflags] + list(args),
                               cwd=self.checkout, env=self.env, capture_output=True, text=True)

@@ -1,0 +1,121 @@
+"""Tests of the Makefile's front door: every command the README gives checks
+Debian's packages (tools/deps.sh) before it runs anything else, so that it
+works as the first command on a fresh machine; and a build prints one short
+line per step unless asked for the commands in full (V=1)."""
+import os
+import glob
+import re
+import shlex
+import shutil
+import signal
+import subprocess
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+# Run from make test, the environment holds the outer make's flags and its
+# exported variables: none may reach these makes.
+ENV = {k: v for k, v in os.environ.items() if k not in (
+    'MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'CHAPTERS', 'BUILD', 'FLOAT', 'SANITIZE', 'V')}
+
+
+def readme_make_commands():
+    """Every make command of the README: its two commands and each row of its
+    table of targets, with the optional parts ([...]) left out and names
+    given for the paths it leaves to the reader."""
+    with open(os.path.join(ROOT, 'README.md'), encoding='utf-8') as f:
+        text = f.read()
+    commands = re.findall(r'^    (make(?: \w+)?)\s+#', text, re.M)
+    commands += re.findall(r'^\| `(make [^`]*)`', text, re.M)
+    return [re.sub(r'\s*\[.*\]', '', c) for c in commands]
+
+
+def first_command(command, build):
+    """The first command that `make -n` prints for a README command. make -n
+    still runs the rules that remake its makefiles (which is where the
+    package check stands) and the lines that run make again; the process is
+    stopped once the line is read, before anything else can run."""
+    words = shlex.split(command)
+    proc = subprocess.Popen(words[:1] + ['-n', '--no-print-directory', 'BUILD=' + build] +
+                            words[1:], cwd=ROOT, env=ENV, stdout=subprocess.PIPE,
+                            stderr=subprocess.DEVNULL, text=True, start_new_session=True)
+    try:
+        for line in proc.stdout:
+            if line.strip():
+                return line.strip()
+        return ''
+    finally:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+        proc.stdout.close()
+
+
+class PackagesFirstTest(unittest.TestCase):
+    def setUp(self):
+        self.build = tempfile.mkdtemp(prefix='lrt-makefile-test-')
+        self.addCleanup(shutil.rmtree, self.build)
+
+    def test_readme_lists_the_commands_checked_here(self):
+        # The README's reading is itself checked: its two commands and the
+        # targets that the fresh-machine issue named are all among them.
+        targets = {c.split()[1] if len(c.split()) > 1 else 'all'
+                   for c in readme_make_commands()}
+        for target in ('all', 'test', 'html', 'exercises', 'grade', 'gradescope', 'bench',
+                       'try-exercises'):
+            self.assertIn(target, targets)
+
+    def test_every_readme_command_checks_the_packages_first(self):
+        for command in readme_make_commands():
+            first = first_command(command, self.build)
+            # The grading commands check the smaller set a grading image needs.
+            self.assertRegex(first, r'^tools/deps\.sh( grade)?$', command)
+
+    def test_make_clean_needs_no_package(self):
+        self.assertTrue(first_command('make clean', self.build).startswith('rm -rf'))
+
+
+CHAPTERS = ' '.join(sorted(os.path.relpath(p, ROOT)
+                           for p in glob.glob(os.path.join(ROOT, 'chapters', '[0-9][0-9]-*.md'))))
+
+
+class ShortLinesTest(unittest.TestCase):
+    """The code as of chapter 2 built into a scratch directory, once in each
+    form of output; ccache makes the second build cheap."""
+
+    def build(self, *extra):
+        build = tempfile.mkdtemp(prefix='lrt-makefile-test-')
+        self.addCleanup(shutil.rmtree, build)
+        output = ''
+        for goal in ('tangle', 'lib'):
+            result = subprocess.run(['make', '--no-print-directory', '-f', 'tools/asof.mk',
+                                     'ASOF=02', 'BUILD=' + build, 'CHAPTERS=' + CHAPTERS, goal] +
+                                    list(extra),
+                                    cwd=ROOT, env=ENV, capture_output=True, text=True)
+            self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+            output += result.stdout
+        return build, output.splitlines()
+
+    def test_one_short_line_per_step_by_default(self):
+        build, lines = self.build()
+        src = os.path.join(build, 'float/asof/02/src')
+        compiled = sorted(os.path.relpath(os.path.join(d, f), src)
+                          for d, _, files in os.walk(src) for f in files if f.endswith('.cpp'))
+        self.assertTrue(compiled)
+        expected = (['TANGLE %s (the code as of chapter 2)' % src] +
+                    ['CXX    %s (as of chapter 2)' % path for path in compiled] +
+                    ['AR     liblrt.a (as of chapter 2)'])
+        self.assertEqual(sorted(lines), sorted(expected))
+
+    def test_v1_prints_the_commands_in_full(self):
+        _, lines = self.build('V=1')
+        self.assertFalse([l for l in lines if re.match(r'^(TANGLE|CXX|AR) ', l)], lines)
+        self.assertTrue([l for l in lines if 'tools/tangle.py --line-directives' in l], lines)
+        self.assertTrue([l for l in lines if re.search(r'\bg\+\+ .* -c src/lrt/\S+\.cpp', l)],
+                        lines)
+        self.assertTrue([l for l in lines if l.startswith('ar rcs ')], lines)
+
+
+if __name__ == '__main__':
+    unittest.main()

@@ -46,11 +46,21 @@ fi
 [ ${#missing[@]} -eq 0 ] && exit 0
 packages=$(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')
 if [ "$(id -u)" -eq 0 ]; then
+    # apt's and dpkg's output, thousands of lines on a fresh machine, goes to
+    # a log that is shown only if the install fails.
+    log=$(mktemp /tmp/lrt-deps.XXXXXX.log)
     echo "deps: installing $packages"
+    echo "deps: (on a fresh machine about 450 MB to fetch, TeX Live and chromium the most of" \
+         "it: a few minutes; apt's output goes to $log)"
     export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq
     # shellcheck disable=SC2086
-    apt-get install -y -qq --no-install-recommends $packages
+    if ! { apt-get update -q && apt-get install -y -q --no-install-recommends $packages; } \
+            > "$log" 2>&1; then
+        tail -n 30 "$log" >&2
+        echo "deps: apt-get failed; its whole output is in $log" >&2
+        exit 1
+    fi
+    rm -f "$log"
     # Check again: a package that installed but did not bring what we test for
     # must stop the build here, not in the middle of a LaTeX run.
     [ -z "${LRT_DEPS_RECHECK:-}" ] && LRT_DEPS_RECHECK=1 exec "$0" "$@"

@@ -102,8 +102,8 @@ PYTHON_TESTS_09 := tests/tools/test_bench.py
 test: $(LINTED)
 	@if [ -z "$$(find $(BUILD) -path '*/obj/tests' -print -quit)" ]; then \
 	    echo "make test: the first build compiles each chapter's tests as of every" \
-	         "later chapter (about ten minutes on two cores); later builds compile" \
-	         "only what changed"; fi
+	         "later chapter, which takes several minutes; later builds compile only" \
+	         "what changed"; fi
 	@bins=(); \
 	for n in $(PREFIXES); do \
 	    $(ASOF) ASOF=$$n ONLY=$(CH) tangle; \

@@ -42,6 +42,17 @@ BWRAP_COMMON = ['--unshare-all', '--unshare-user', '--die-with-parent', '--new-s
                 '--setenv', 'HOME', '/tmp']
 
 
+# bwrap's own first process in the new PID namespace outlives the bwrap that
+# the grader waits for by a moment, and so is left to the nearest subreaper or
+# to the machine's first process, which in a container may never reap it.
+# The compiler and the probe need no such process: the command itself is the
+# namespace's first process (it still ends with the sandbox). The worker keeps
+# it: a namespace's first process ignores the signals it sends itself, so a
+# student's abort() would end differently; the judge reaps what its workers
+# leave (tests/calls/judge.cpp).
+NO_INIT = ['--as-pid-1']
+
+
 def _is_root():
     return os.geteuid() == 0
 
@@ -107,7 +118,7 @@ def isolation():
     """The isolation this machine gives: "bubblewrap", "unprivileged user" or
     "none". bwrap is tried for real, with the options the worker uses."""
     if shutil.which('bwrap'):
-        probe = _drop_privileges() + ['bwrap'] + BWRAP_COMMON + [
+        probe = _drop_privileges() + ['bwrap'] + BWRAP_COMMON + NO_INIT + [
             '--tmpfs', '/tmp', '--ro-bind', '/usr', '/usr',
             '--symlink', 'usr/bin', '/bin', '--symlink', 'usr/lib', '/lib',
             '--symlink', 'usr/lib64', '/lib64', 'true']
@@ -158,7 +169,7 @@ def compile_command(argv, build_dir, cache_dir=None):
     a student's #include of a grader's file finds nothing."""
     if isolation() != 'bubblewrap':
         return None     # the caller compiles in build_dir without a sandbox
-    args = ['bwrap'] + BWRAP_COMMON + [
+    args = ['bwrap'] + BWRAP_COMMON + NO_INIT + [
         '--ro-bind', '/usr', '/usr', '--symlink', 'usr/bin', '/bin',
         '--symlink', 'usr/lib', '/lib', '--symlink', 'usr/lib64', '/lib64',
         '--tmpfs', '/tmp', '--bind', build_dir, '/build', '--chdir', '/build']

@@ -35,6 +35,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -96,6 +97,34 @@ std::string SignalName(int sig) {
     }
 }
 
+// The processes that a worker's sandbox leaves when it ends. bubblewrap's
+// first process in the sandbox's PID namespace is a child of the bwrap that
+// the judge started, and often ends just after it: an orphan. The judge is a
+// child subreaper (main), so orphans become its children, not those of the
+// machine's first process, which in a container may never reap them (a
+// shell, or a supervisor that reaps late). Every process of the sandbox's
+// user, a zombie too, counts against that user's process limit: unreaped,
+// the orphans of a few dozen crashed workers (code that calls exit() in
+// every call) used it up, no worker could start any more, and the tests of
+// the next exercises failed with "the code exited with status 1", bwrap's
+// failure to fork counted as the student's crash.
+void ReapEndedChildren() {
+    while (waitpid(-1, nullptr, WNOHANG) > 0) {
+    }
+}
+
+// At the end of the judge: waits until its last child has ended, for at most
+// a few seconds (an orphan of the last worker is ending). What is left
+// after that (a process that escaped a sandbox without a PID namespace)
+// goes to the machine's first process when the judge exits.
+void ReapChildrenBeforeExit() {
+    for (int waited = 0; waited < 300; ++waited) {
+        pid_t pid = waitpid(-1, nullptr, WNOHANG);
+        if (pid < 0) return;   // no child left
+        if (pid == 0) usleep(10000);
+    }
+}
+
 // The worker process: the sandbox with the student's code, spoken to through
 // two pipes that the worker sees as file descriptors 3 (requests) and 4
 // (replies); its standard output and error go to the worker log.
@@ -117,6 +146,7 @@ class Worker {
             return false;
         }
         ++starts;
+        ReapEndedChildren();
         int toWorker[2], fromWorker[2];
         if (pipe2(toWorker, O_CLOEXEC) != 0 || pipe2(fromWorker, O_CLOEXEC) != 0) {
             *why = "pipe() failed";
@@ -183,6 +213,7 @@ class Worker {
             }
         }
         pid = -1;
+        ReapEndedChildren();
         if (WIFSIGNALED(status)) return "killed by " + SignalName(WTERMSIG(status));
         if (WIFEXITED(status)) {
             int code = WEXITSTATUS(status);
@@ -579,6 +610,9 @@ int main(int argc, char **argv) {
     using lrt::calls::config;
     // The judge writes to pipes of workers that may have died.
     signal(SIGPIPE, SIG_IGN);
+    // The orphans of the workers' sandboxes come to the judge
+    // (ReapEndedChildren).
+    prctl(PR_SET_CHILD_SUBREAPER, 1);
     std::vector<char *> rest{argv[0]};
     std::string results;
     for (int i = 1; i < argc; ++i) {
@@ -617,5 +651,6 @@ int main(int argc, char **argv) {
     lrt::calls::worker = &w;
     int status = RUN_ALL_TESTS();
     w.Stop();
+    lrt::calls::ReapChildrenBeforeExit();
     return status;
 }

@@ -2,9 +2,9 @@
 
 Submissions are made from chapters/05-slab-test.md (three exercises, 7
 points) by text edits, in a temporary directory, and graded as one batch (two
-workers, one shared build cache, so each distinct code is compiled once);
-each test then asserts the exact scores and statuses in that submission's
-results.json.
+workers, one shared build cache, so each distinct code is compiled once) by a
+scratch copy of the repository; each test then asserts the exact scores and
+statuses in that submission's results.json.
 
 Two kinds of submission:
 
@@ -22,8 +22,11 @@ Two kinds of submission:
   depend on the test's name, a fork bomb, a 20 GB allocation, an archive
   whose members try to replace tests or escape with `..` and links. Each is
   put into ex-5.10's region and then fails as the stub does: the exact score
-  is 5 of 7 (ex-5.9 and ex-5.11 solved), and nothing outside the results and
-  the cache changes, also seconds after the grader has finished.
+  is 5 of 7 (ex-5.9 and ex-5.11 solved), and nothing outside the results
+  changes, also seconds after the grader has finished: no file of the copy
+  they aim at, of the submissions, of the real repository's tests, tools and
+  chapters or of what git tracks there, and no entry that the cache held
+  before the batch.
 
 The expectations come from the book, not from the grader: the exercises and
 their points from `tools/exercises.py list --json` (checked against the
@@ -32,6 +35,7 @@ sources. The batch grades every chapter with exercises (`--chapters`, given
 explicitly), so the chapters other than 5 are in max_score and their tests
 are NOT-RUN.
 """
+import contextlib
 import csv
 import hashlib
 import io
@@ -43,6 +47,7 @@ import subprocess
 import sys
 import tarfile
 import tempfile
+import threading
 import time
 import unittest
 import zipfile
@@ -181,33 +186,146 @@ def run_grade(args, cwd=ROOT):
                           text=True)
 
 
-def snapshot(paths):
-    """{file: sha256} of every file under paths (build/, .git, __pycache__
-    and the grade cache's own working directories left out)."""
-    found = {}
-    for top in paths:
-        if os.path.isfile(top):
-            with open(top, 'rb') as f:
-                found[top] = hashlib.sha256(f.read()).hexdigest()
-            continue
-        for d, dirs, files in os.walk(top):
-            dirs[:] = [x for x in dirs if x not in ('build', '.git', '__pycache__')]
-            for name in files:
-                path = os.path.join(d, name)
-                try:
-                    with open(path, 'rb') as f:
-                        found[path] = hashlib.sha256(f.read()).hexdigest()
-                except OSError:
-                    found[path] = 'unreadable'
+# What an attack must leave alone in the real repository besides the files
+# git tracks: the tests (public and hidden), the grader, and the chapters.
+GUARDED = ('tests', 'tools', 'chapters')
+# Folders that the real repository's snapshots, and a copy of it, leave out:
+# the build's output, git's store, and Python's bytecode (which any test that
+# imports a tool writes, at any time).
+SKIPPED = ('build', '.git', '__pycache__')
+
+
+def tree_files(top, skipped=SKIPPED):
+    """Every file and link under top, folders named in skipped left out (a
+    link to a folder is listed, as a link, and not walked into)."""
+    found = []
+    for d, dirs, files in os.walk(top):
+        links = [x for x in dirs if os.path.islink(os.path.join(d, x))]
+        dirs[:] = [x for x in dirs if x not in skipped]
+        found += [os.path.join(d, x) for x in files + links]
     return found
+
+
+def git_files(root, *options):
+    """The files (relative to root) that `git ls-files` lists with options, or
+    None if root is not the top of a git work tree (an exported tree, or one
+    unpacked inside another repository)."""
+    try:
+        top = subprocess.run(['git', '-C', root, 'rev-parse', '--show-toplevel'],
+                             capture_output=True, text=True, check=True).stdout.strip()
+        if os.path.realpath(top) != os.path.realpath(root):
+            return None
+        listed = subprocess.run(['git', '-C', root, 'ls-files', '-z'] + list(options),
+                                capture_output=True, check=True).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    return [os.fsdecode(p) for p in listed.split(b'\0') if p]
+
+
+def book_files(root):
+    """The files (relative to root) that a copy of the book takes: those git
+    knows, tracked or new and not ignored (a chapter not added yet is graded
+    too); outside git, the whole tree but SKIPPED."""
+    known = git_files(root, '--cached', '--others', '--exclude-standard')
+    if known is None:
+        return [os.path.relpath(p, root) for p in tree_files(root)]
+    return [p for p in known if os.path.lexists(os.path.join(root, p))]
+
+
+def copy_book(root, copy):
+    """Copies the book at root to copy (links as links, modes kept)."""
+    for rel in book_files(root):
+        target = os.path.join(copy, rel)
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        shutil.copy2(os.path.join(root, rel), target, follow_symlinks=False)
+
+
+def watched_files(root):
+    """The files of the real repository that an attack which got out of the
+    copy it was aimed at could change: those git tracks, and every file under
+    GUARDED, new ones included. Left out: untracked files elsewhere (a log of
+    this very run at the root, `make test > log.test` or `| tee test.log`, an
+    editor's swap file), which whoever runs the tests may write meanwhile and
+    nothing grades with, and SKIPPED."""
+    files = {os.path.join(root, p) for p in git_files(root, '--cached') or []}
+    for folder in GUARDED:
+        files.update(tree_files(os.path.join(root, folder)))
+    return sorted(files)
+
+
+def cache_files(cache):
+    """The grade cache's files but ccache's store, which is ccache's own: every
+    compile rewrites its statistics."""
+    return tree_files(cache, skipped=('ccache',))
+
+
+def digest(path):
+    """What a snapshot holds of a file: a link's target, else its bytes' sha256."""
+    if os.path.islink(path):
+        return 'link to ' + os.readlink(path)
+    try:
+        with open(path, 'rb') as f:
+            return hashlib.sha256(f.read()).hexdigest()
+    except OSError:
+        return 'unreadable'
+
+
+def snapshot(files):
+    """{file: digest} of the files."""
+    return {path: digest(path) for path in files}
+
+
+def changed(before, after):
+    """The files two snapshots disagree on: new, gone or rewritten."""
+    return sorted(p for p in set(before) | set(after) if before.get(p) != after.get(p))
+
+
+def cache_tampering(cache, before, after):
+    """What changed in the grade cache that the grader itself never changes.
+    The grader writes each entry once, under a name its contents give (a
+    judge-* or worker-* folder holding its binary, a needed-* list, a
+    verdicts-*.json), and only reads it from then on: a file of `before` that
+    changed or went, or a new file in an entry folder `before` had, is someone
+    else's doing. New entries at the top, and their locks, are the grader's."""
+    entries = {os.path.dirname(p) for p in before} - {cache}
+    return [p for p in changed(before, after)
+            if p in before or os.path.dirname(p) in entries]
+
+
+@contextlib.contextmanager
+def log_written(path):
+    """A file at path that grows while the block runs, as the log of `make
+    test > log.test` does; removed afterwards. Yields whether it could be
+    written (in a read-only tree no log can be written either)."""
+    try:
+        log = open(path, 'a')
+    except OSError:
+        yield False
+        return
+    stop = threading.Event()
+
+    def write():
+        while not stop.wait(0.1):
+            log.write('still running\n')
+            log.flush()
+    writer = threading.Thread(target=write)
+    writer.start()
+    try:
+        yield True
+    finally:
+        stop.set()
+        writer.join()
+        log.close()
+        os.remove(path)
 
 
 def make_submissions(ns, root=ROOT):
     """Writes the submissions into ns.subs and sets ns.expected, what each must
     score: {exercise: (status, text in its tests' output)} for chapter 5's
     exercises that do not pass. ns holds tmp, e9, e10, e11 and ch5; the
-    attacks aim at `root` (a script that grades them with another version
-    of the grader points them at a scratch copy of it)."""
+    attacks aim at `root` (GradeTest gives the scratch copy of the book that
+    grades them; a script that grades them with another version of the
+    grader, a copy of its own)."""
     ns.subs = os.path.join(ns.tmp, 'submissions')
     ns.out = os.path.join(ns.tmp, 'out')
     ns.cache = os.path.join(ns.tmp, 'cache')
@@ -353,23 +471,49 @@ class GradeTest(unittest.TestCase):
         cls.hidden_words = hidden_only_identifiers(cls.chapters)
 
         cls.tmp = tempfile.mkdtemp(prefix='lrt-grade-test-')
-        make_submissions(cls)
+        # The batch is graded by a scratch copy of the repository, which the
+        # attacks aim at: every file of it can be watched, while whoever runs
+        # the tests writes what they like into the real one.
+        cls.copy = os.path.join(cls.tmp, 'repo')
+        copy_book(ROOT, cls.copy)
+        make_submissions(cls, root=cls.copy)
         # Every chapter with exercises is graded, named explicitly so that a
         # kit's exercises.json (the default's source in a kit) changes nothing.
         cls.graded = ['--chapters', ' '.join(cls.chapters)]
-        watched = [ROOT, cls.subs]
-        cls.before = snapshot(watched)
-        proc = subprocess.run([sys.executable, GRADE, '--batch', cls.subs, '--out', cls.out,
-                               '--cache', cls.cache, '--time-limit', str(TIME_LIMIT),
-                               '--memory-limit', '512'] + cls.graded,
-                              cwd=ROOT, capture_output=True, text=True)
-        cls.batch_output = proc.stdout + proc.stderr
-        cls.batch_status = proc.returncode
-        cls.results_after_batch = snapshot([cls.out])
-        # Long enough for an escaped process to do what it waited to do.
-        time.sleep(6)
-        cls.after = snapshot(watched)
-        cls.results_later = snapshot([cls.out])
+        grade = [sys.executable, os.path.join(cls.copy, 'tools', 'grade.py'),
+                 '--cache', cls.cache, '--time-limit', str(TIME_LIMIT),
+                 '--memory-limit', '512'] + cls.graded
+        # Nor does the copy's grader write its bytecode into the copy.
+        env = dict(os.environ, PYTHONDONTWRITEBYTECODE='1')
+        # A clean grading first, so that the cache holds what the attacks aim
+        # at there (a judge, a worker, verdicts) before they run.
+        proc = subprocess.run(grade + [os.path.join(cls.subs, 'solution.zip'), '--out',
+                                       os.path.join(cls.tmp, 'clean'), '--quiet'],
+                              cwd=cls.copy, env=env, capture_output=True, text=True)
+        cls.clean_output = proc.stdout + proc.stderr
+        cls.clean_status = proc.returncode
+        # A log grows at the root of the real repository meanwhile, as `make
+        # test > log.test` writes one: it is no attack's doing.
+        with log_written(os.path.join(ROOT, '.lrt-test-log-%d' % os.getpid())):
+            cls.before, cls.cache_before = cls.watch()
+            proc = subprocess.run(grade + ['--batch', cls.subs, '--out', cls.out],
+                                  cwd=cls.copy, env=env, capture_output=True, text=True)
+            cls.batch_output = proc.stdout + proc.stderr
+            cls.batch_status = proc.returncode
+            cls.results_after_batch = snapshot(tree_files(cls.out, skipped=()))
+            # Long enough for an escaped process to do what it waited to do.
+            time.sleep(6)
+            cls.after, cls.cache_after = cls.watch()
+            cls.results_later = snapshot(tree_files(cls.out, skipped=()))
+
+    @classmethod
+    def watch(cls):
+        """Snapshots of what the attacks must not change: every file of the
+        copy, of the submissions, and the real repository's watched files;
+        and, apart, the cache's."""
+        files = (tree_files(cls.copy, skipped=()) + tree_files(cls.subs, skipped=()) +
+                 watched_files(ROOT))
+        return snapshot(files), snapshot(cache_files(cls.cache))
 
     @classmethod
     def tearDownClass(cls):
@@ -588,15 +732,22 @@ class GradeTest(unittest.TestCase):
                                        self.points[self.e10], places=3)
 
     def test_attacks_change_no_file_outside_the_results(self):
-        # The repository and the submissions, before the batch and seconds
-        # after it ended; no marker outside; the results unchanged since the
-        # grader wrote them.
-        changed = sorted(p for p in set(self.before) | set(self.after)
-                         if self.before.get(p) != self.after.get(p))
-        self.assertEqual(changed, [])
+        # The copy, the submissions, the real repository's watched files and
+        # the cache's entries, before the batch and seconds after it ended; no
+        # marker outside; the results unchanged since the grader wrote them.
+        self.assertEqual(changed(self.before, self.after), [])
+        self.assertEqual(cache_tampering(self.cache, self.cache_before, self.cache_after), [])
         for name in self.attacks:
             self.assertFalse(os.path.exists(self.marker + '-' + name), name)
         self.assertEqual(self.results_after_batch, self.results_later)
+
+    def test_cache_held_what_the_attacks_aim_at(self):
+        # The cache's check above means something only if the clean grading
+        # left there what an attack would rewrite: a judge, a worker, verdicts.
+        self.assertEqual(self.clean_status, 0, self.clean_output)
+        names = [os.path.relpath(p, self.cache) for p in self.cache_before]
+        for entry in (r'judge-05-\w+/judge', r'worker-05-\w+/worker', r'verdicts-\w+\.json'):
+            self.assertTrue([n for n in names if re.fullmatch(entry, n)], (entry, names))
 
     def test_attack_names_no_grader_process(self):
         # A killed grader would have left no results: every submission has
@@ -790,6 +941,95 @@ class GradeTest(unittest.TestCase):
         data = self.grade_allowing_changes('deleted')
         self.assertGraded(data, {e: ('COMPILE-ERROR', None) for e in self.ch5})
         self.assertIn('allowed; graded with your code', data['output'])
+
+
+def append(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, 'a') as f:
+        f.write(text)
+
+
+class WatchTest(unittest.TestCase):
+    """The snapshots of GradeTest, on a small repository and cache: they see
+    what an attack could write, and not what the person running the tests or
+    the grader writes."""
+
+    def setUp(self):
+        tmp = tempfile.mkdtemp(prefix='lrt-watch-test-')
+        self.addCleanup(shutil.rmtree, tmp)
+        self.repo, self.cache = os.path.join(tmp, 'repo'), os.path.join(tmp, 'cache')
+        for rel in ('Makefile', 'tests/ch05/test_a.cpp',
+                    'tests/hidden/ch05/test_b.cpp', 'tools/grade.py', 'chapters/05-a.md'):
+            append(os.path.join(self.repo, rel), rel + '\n')
+        append(os.path.join(self.repo, '.gitignore'), '/build/\n__pycache__/\n')
+        subprocess.run(['git', 'init', '-q', self.repo], check=True)
+        subprocess.run(['git', '-C', self.repo, 'add', '.'], check=True)
+        # Untracked: a log that was there already, and files git ignores.
+        for rel in ('log.test', 'build/lrt.o', 'tools/__pycache__/grade.pyc'):
+            append(os.path.join(self.repo, rel), 'before\n')
+        # A cache that a clean grading filled; its locks are empty.
+        for rel in ('judge-05-k1/judge', 'worker-05-k2/worker', 'needed-05-k3',
+                    'verdicts-k4.json', 'ccache/stats'):
+            append(os.path.join(self.cache, rel), rel + '\n')
+        append(os.path.join(self.cache, 'judge-05-k1.lock'), '')
+
+    def watch(self):
+        return snapshot(watched_files(self.repo)), snapshot(cache_files(self.cache))
+
+    def write(self, top, paths):
+        """Appends a line to each of paths (relative to top), made if new;
+        their full paths, sorted."""
+        for rel in paths:
+            append(os.path.join(top, rel), 'written\n')
+        return sorted(os.path.join(top, rel) for rel in paths)
+
+    def test_writes_an_attack_could_make_are_caught(self):
+        before, cache_before = self.watch()
+        planted = self.write(self.repo, [
+            'tests/ch05/test_a.cpp', 'tests/ch05/test_zz_attack.cpp',
+            'tools/grade.py', 'tools/planted.py',
+            'chapters/05-a.md', 'chapters/06-planted.md', 'Makefile'])
+        gone = os.path.join(self.repo, 'tests/hidden/ch05/test_b.cpp')
+        os.remove(gone)
+        in_cache = self.write(self.cache, [
+            'judge-05-k1/judge', 'judge-05-k1/worker', 'worker-05-k2/worker',
+            'needed-05-k3', 'verdicts-k4.json'])
+        after, cache_after = self.watch()
+        self.assertEqual(changed(before, after), sorted(planted + [gone]))
+        self.assertEqual(cache_tampering(self.cache, cache_before, cache_after), in_cache)
+
+    def test_a_log_written_meanwhile_is_not_reported(self):
+        before, _ = self.watch()
+        self.write(self.repo, ['log.test', 'test.log', '.Makefile.swp', 'build/lrt.o',
+                               'tools/__pycache__/grade.pyc'])
+        after, _ = self.watch()
+        self.assertEqual(changed(before, after), [])
+
+    def test_the_graders_own_cache_writes_are_not_reported(self):
+        _, before = self.watch()
+        self.write(self.cache, ['worker-05-k5/worker', 'verdicts-k6.json', 'ccache/stats',
+                                'ccache/a/b.o'])
+        for lock in ('judge-05-k1.lock', 'worker-05-k5.lock'):    # taken again, and anew
+            append(os.path.join(self.cache, lock), '')
+        _, after = self.watch()
+        self.assertEqual(cache_tampering(self.cache, before, after), [])
+
+    def test_copy_takes_the_files_git_knows(self):
+        append(os.path.join(self.repo, 'chapters/06-new.md'), 'not added yet\n')
+        copy = os.path.join(os.path.dirname(self.repo), 'copy')
+        copy_book(self.repo, copy)
+        self.assertEqual(sorted(os.path.relpath(p, copy) for p in tree_files(copy, ())), [
+            '.gitignore', 'Makefile', 'chapters/05-a.md', 'chapters/06-new.md',
+            'log.test', 'tests/ch05/test_a.cpp', 'tests/hidden/ch05/test_b.cpp',
+            'tools/grade.py'])
+
+    def test_copy_outside_git_takes_the_tree_but_build_and_bytecode(self):
+        shutil.rmtree(os.path.join(self.repo, '.git'))
+        copy = os.path.join(os.path.dirname(self.repo), 'copy')
+        copy_book(self.repo, copy)
+        self.assertEqual(sorted(os.path.relpath(p, copy) for p in tree_files(copy, ())), [
+            '.gitignore', 'Makefile', 'chapters/05-a.md', 'log.test',
+            'tests/ch05/test_a.cpp', 'tests/hidden/ch05/test_b.cpp', 'tools/grade.py'])
 
 
 if __name__ == '__main__':

@@ -46,8 +46,13 @@ Outputs, in --out (default build/grade/NAME), rewritten atomically after every
 test: results.json (Gradescope), junit.xml and results.txt (a plain table).
 Batch mode writes OUT/NAME/ for each student, OUT/grades.csv (a row per
 student and exercise) and OUT/gradebook.csv (a row per student, a column per
-exercise and the total; the student from a submission directory's
-submission_metadata.json, Gradescope's, else the submission's name).
+exercise and the total). NAME is the submission's folder or archive name,
+which must be a plain name ([A-Za-z0-9][A-Za-z0-9._-]*, no "..", not
+grades.csv, gradebook.csv or cache): any other submission is refused, not
+graded, and gets rows with no number. Who submitted is NAME, or the rows of
+the instructor's --roster (submission,student,login; several rows for a
+group), never a file inside the submission (a submission_metadata.json there
+is the student's own, and is ignored).
 
 The student's code runs with the grader's privileges: rlimits and a temporary
 working directory, no sandbox. Run it in a container (Gradescope's is one).

@@ -46,13 +46,8 @@ Outputs, in --out (default build/grade/NAME), rewritten atomically after every
 test: results.json (Gradescope), junit.xml and results.txt (a plain table).
 Batch mode writes OUT/NAME/ for each student, OUT/grades.csv (a row per
 student and exercise) and OUT/gradebook.csv (a row per student, a column per
-exercise and the total). NAME is the submission's folder or archive name,
-which must be a plain name ([A-Za-z0-9][A-Za-z0-9._-]*, no "..", not
-grades.csv, gradebook.csv or cache): any other submission is refused, not
-graded, and gets rows with no number. Who submitted is NAME, or the rows of
-the instructor's --roster (submission,student,login; several rows for a
-group), never a file inside the submission (a submission_metadata.json there
-is the student's own, and is ignored).
+exercise and the total; the student from a submission directory's
+submission_metadata.json, Gradescope's, else the submission's name).
 
 The student's code runs with the grader's privileges: rlimits and a temporary
 working directory, no sandbox. Run it in a container (Gradescope's is one).
@@ -1117,7 +1112,8 @@ def grade_batch(args):
     out = os.path.abspath(args.out or os.path.join(args.root, 'build', 'grade', 'batch'))
     found, skipped = submissions_in(args.batch)
     subs = [(name, path) for name, path, problem in found if problem is None]
-    refused = [(os.path.basename(path), problem) for _, path, problem in found if problem]
+    refused = [(os.path.basename(path), name, problem) for name, path, problem in found
+               if problem]
     # The roster is read before anything is graded: a mistake in it stops
     # the batch while it costs nothing.
     roster = None
@@ -1161,15 +1157,17 @@ def grade_batch(args):
         if note:
             notes.append(note)
     # A refused submission is not graded: it gets a row with no number in
-    # both CSV files (its roster rows, else its file name), like a grader
-    # error, so that the instructor sees it where the grades are.
+    # both CSV files, like a grader error, so that the instructor sees it
+    # where the grades are. The row names it "REFUSED FILE" (or by its roster
+    # rows): the file name alone could be "=..." or "-...", which a
+    # spreadsheet opening the CSV takes for a formula.
     book_rows = []
-    for entry, problem in refused:
-        who = (roster or {}).get(ARCHIVE_SUFFIX.sub('', entry)) or \
-            [(printable(entry), printable(entry))]
-        rows.append((printable(entry), '', '', '', ''))
-        book_rows.extend((name, login, None) for name, login in who)
-        print('REFUSED %s: %s' % (printable(entry), problem), flush=True)
+    for entry, name, problem in refused:
+        shown = 'REFUSED ' + printable(entry)
+        rows.append((shown, '', '', '', ''))
+        book_rows.extend((student, login, None) for student, login in
+                         (roster or {}).get(name) or [(shown, shown)])
+        print('%s: %s' % (shown, problem), flush=True)
 
     def one(item):
         student, path = item
@@ -1229,7 +1227,7 @@ def grade_batch(args):
         notes.append('%s is in more than one submission: check the gradebook' % login)
     for entry, reason in skipped:
         notes.append('%s: %s: skipped' % (printable(entry), reason))
-    for entry, problem in refused:
+    for entry, _, problem in refused:
         notes.append('REFUSED %s, not graded (its rows have no number): %s; rename it '
                      'and grade it again' % (printable(entry), problem))
     for note in notes:
@@ -1244,7 +1242,7 @@ def grade_batch(args):
           'median %g, max %g; %s' % (len(subs), time.time() - start, len(broken),
                                     ': ' + ', '.join(broken) if broken else '',
                                     '; %d REFUSED (not graded): %s' % (
-                                        len(refused), ', '.join(printable(e) for e, _ in
+                                        len(refused), ', '.join(printable(e) for e, _, _ in
                                                                 refused)) if refused else '',
                                     values[0] if values else 0,
                                     values[len(values) // 2] if values else 0,

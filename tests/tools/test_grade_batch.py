@@ -39,7 +39,8 @@ import grade  # noqa: E402
 HOSTILE = [('...tar.gz', True), ('..tar.gz', True), ('.tar.gz', True), ('.tgz', True),
            ('.hidden', False), ('-rf', False), ('with space', False),
            ('\u00fcn\u00efcode', False), ('new\nline', False), ('cache.zip', True),
-           ('grades.csv.tgz', True), ('gradebook.csv', False), ('a..b.zip', True)]
+           ('grades.csv.tgz', True), ('gradebook.csv', False), ('a..b.zip', True),
+           ('=1+1.zip', True)]
 
 
 def write(path, text):
@@ -292,7 +293,7 @@ class HostileBatchTest(unittest.TestCase):
             rows = {(r[0], r[1]): r[3:] for r in list(csv.reader(f))[1:]}
         graded = {('alice', 'alice'), ('mallory', 'mallory'), ('Ada Lovelace', 'ada@x'),
                   ('Alan Turing', 'alan@x')}
-        refused = {(grade.printable(e), grade.printable(e)) for e, _ in HOSTILE}
+        refused = {('REFUSED ' + grade.printable(e),) * 2 for e, _ in HOSTILE}
         self.assertEqual(set(rows), graded | refused)
         for who in graded:
             self.assertEqual(rows[who][-1], '0', who)
@@ -302,7 +303,7 @@ class HostileBatchTest(unittest.TestCase):
         with open(os.path.join(out, 'grades.csv'), newline='', encoding='utf-8') as f:
             points = [(r['student'], r['points']) for r in csv.DictReader(f)]
         for entry, _ in HOSTILE:
-            self.assertIn((grade.printable(entry), ''), points)
+            self.assertIn(('REFUSED ' + grade.printable(entry), ''), points)
 
     def test_bubblewrap(self):
         self.check(fallback=False)

@@ -5,9 +5,12 @@
 #                       grade one submission (a directory, .tar.gz or .zip of
 #                       edited chapters): results.json (Gradescope), junit.xml
 #                       and results.txt in OUT (default build/grade/NAME)
-#   make grade-batch SUBMISSIONS=dir [CHAPTERS="05"] [OUT=dir]
-#                       every subdirectory or archive of dir is one student:
-#                       OUT/NAME/ each, and OUT/grades.csv (default build/grade/batch)
+#   make grade-batch SUBMISSIONS=dir [CHAPTERS="05"] [OUT=dir] [ROSTER=file.csv]
+#                       every subdirectory or archive of dir is one submission:
+#                       OUT/NAME/ each, OUT/grades.csv and OUT/gradebook.csv
+#                       (default build/grade/batch); a NAME that is not a plain
+#                       name (..., .hidden, spaces) is refused; ROSTER says whose
+#                       each is (submission,student,login rows; default: NAME)
 #
 #   make gradescope [CHAPTERS="05" | PLAN=course.toml ASSIGNMENT=a1] [GRADE_FLAGS="..."]
 #                       build/gradescope/autograder.zip, Gradescope's autograder
@@ -41,7 +44,7 @@ grade-batch:
 	    exit 2; fi
 	python3 tools/grade.py --cache $(GRADE_CACHE) --batch $(SUBMISSIONS) \
 	    $(if $(OUT),--out $(OUT)) $(if $(GRADE_CHAPTERS),--chapters "$(GRADE_CHAPTERS)") \
-	    $(GRADE_PLAN) $(GRADE_FLAGS)
+	    $(if $(ROSTER),--roster $(ROSTER)) $(GRADE_PLAN) $(GRADE_FLAGS)
 
 gradescope:
 	python3 tools/gradescope.py --out $(BUILD)/gradescope/autograder.zip \

@@ -949,40 +949,141 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
 # ---------------------------------------------------------------------------
 # Batch mode
 
+# A batch names each submission's results directory, OUT/NAME, after the
+# submission (its folder, or its archive without .zip/.tar.gz/.tgz), and that
+# name is the student's identity unless a roster says otherwise. Only names
+# that are one plain path component qualify: a name such as ".." or "" would
+# make OUT/NAME a directory outside OUT's results (OUT's parent, or OUT
+# itself), which the batch empties before grading.
+SAFE_NAME = re.compile(r'^[A-Za-z0-9][A-Za-z0-9._-]*$')
+MAX_NAME = 100
+# Files and directories of OUT that are not a student's results (the .tmp
+# files are written, then renamed over the others).
+RESERVED_NAMES = ('grades.csv', 'gradebook.csv', 'grades.csv.tmp', 'gradebook.csv.tmp',
+                  'cache')
+ARCHIVE_SUFFIX = re.compile(r'\.(tar\.gz|tgz|zip)$')
+
+
+def printable(name):
+    """A file name as it can be shown on one line (control characters escaped)."""
+    return ''.join(c if c.isprintable() else c.encode('unicode_escape').decode('ascii')
+                   for c in name)
+
+
+def name_problem(name):
+    """Why a submission's name cannot name its results (None if it can)."""
+    if not SAFE_NAME.match(name):
+        return ('a name must start with a letter or digit and hold only letters, '
+                'digits, ".", "_" and "-" (ASCII)')
+    if '..' in name:
+        return 'a name must not contain ".."'
+    if name.lower() in RESERVED_NAMES:
+        return '%s is the name of a file of the batch\'s own' % name
+    if len(name) > MAX_NAME:
+        return 'a name must be at most %d characters long' % MAX_NAME
+    return None
+
+
 def submissions_in(directory):
-    found = []
-    for name in sorted(os.listdir(directory)):
-        full = os.path.join(directory, name)
+    """(submissions, skipped): submissions are (name, path, problem) for each
+    subdirectory and .tar.gz/.tgz/.zip archive of directory, problem saying
+    why the name is refused (None if it is not); skipped are (entry, reason)
+    for every other entry, so that nothing is left out without a word."""
+    found, skipped = [], []
+    for entry in sorted(os.listdir(directory)):
+        full = os.path.join(directory, entry)
         if os.path.isdir(full) and not os.path.islink(full):
-            found.append((name, full))
-        elif name.endswith(('.tar.gz', '.tgz', '.zip')) and os.path.isfile(full):
-            found.append((re.sub(r'\.(tar\.gz|tgz|zip)$', '', name), full))
-    return found
+            name = entry
+        elif ARCHIVE_SUFFIX.search(entry) and os.path.isfile(full):
+            name = ARCHIVE_SUFFIX.sub('', entry)
+        else:
+            skipped.append((entry, 'neither a directory nor a .tar.gz, .tgz or .zip file'))
+            continue
+        found.append((name, full, name_problem(name)))
+    # Two submissions with one name (alice/ and alice.zip) would share a
+    # results directory and a student: neither is graded.
+    names = [name for name, _, _ in found]
+    found = [(name, full, problem or ('another submission is also named %s' % name
+                                      if names.count(name) > 1 else None))
+             for name, full, problem in found]
+    return found, skipped
+
+
+def remove_inside(out, target):
+    """Removes target, an old result directory, only if its real path is
+    strictly inside out's: whatever a name or a link says, nothing outside the
+    batch's output is ever removed (and not the output itself)."""
+    root = os.path.realpath(out)
+    real = os.path.realpath(target)
+    if real == root or os.path.commonpath([root, real]) != root:
+        raise ValueError('%s is not inside %s: not removed' % (target, out))
+    if os.path.islink(target):
+        os.unlink(target)
+    else:
+        shutil.rmtree(target, ignore_errors=True)
 
 
 METADATA = 'submission_metadata.json'
 
 
-def submitters(name, path):
-    """[(student, login)] of a submission: the users of Gradescope's
-    submission_metadata.json at the top of a submission directory (several
-    for a group), else the submission's name for both."""
-    meta = os.path.join(path, METADATA)
-    if os.path.isdir(path) and os.path.isfile(meta) and not os.path.islink(meta):
-        try:
-            with open(meta, encoding='utf-8') as f:
-                users = json.load(f)['users']
-            found = [(str(u.get('name') or u.get('email') or u.get('id')),
-                      str(u.get('email') or u.get('sid') or u.get('id') or name))
-                     for u in users if isinstance(u, dict)]
-            if found:
-                return found, None
-            problem = 'no users'
-        except (OSError, ValueError, KeyError, TypeError) as e:
-            problem = str(e) or type(e).__name__
-        return [(name, name)], '%s: %s cannot be read (%s): the submission\'s name is used' \
-            % (name, METADATA, problem)
-    return [(name, name)], None
+class RosterError(Exception):
+    pass
+
+
+ROSTER_COLUMNS = ['submission', 'student', 'login']
+
+
+def read_roster(path, names):
+    """{submission name: [(student, login)]} from an instructor's CSV with the
+    columns submission, student, login (a header line, then a row per
+    student; several rows for one submission make a group). names are the
+    batch's submissions: a row naming another is an error, as is anything
+    malformed; each names the file and line."""
+    try:
+        with open(path, encoding='utf-8-sig', newline='') as f:
+            lines = list(csv.reader(f))
+    except (OSError, UnicodeDecodeError, csv.Error) as e:
+        raise RosterError('%s: cannot be read as a UTF-8 CSV file (%s)' % (path, e))
+    if not lines or [c.strip().lower() for c in lines[0]] != ROSTER_COLUMNS:
+        raise RosterError('%s:1: the first line must be the header %s'
+                          % (path, ','.join(ROSTER_COLUMNS)))
+    roster, seen = {}, {}
+    for number, row in enumerate(lines[1:], start=2):
+        if not any(c.strip() for c in row):
+            continue                       # a blank line
+        where = '%s:%d: ' % (path, number)
+        if len(row) != len(ROSTER_COLUMNS):
+            raise RosterError(where + 'expected %d columns (%s), found %d'
+                              % (len(ROSTER_COLUMNS), ','.join(ROSTER_COLUMNS), len(row)))
+        submission, student, login = (c.strip() for c in row)
+        if not student or not login or not submission:
+            raise RosterError(where + 'submission, student and login must all be given')
+        if any(not c.isprintable() for c in student + login):
+            raise RosterError(where + 'a student or login holds a control character')
+        if submission not in names:
+            raise RosterError(where + 'there is no submission named %r in the batch'
+                              % submission)
+        if login in seen:
+            raise RosterError(where + 'login %s is already on line %d' % (login, seen[login]))
+        seen[login] = number
+        roster.setdefault(submission, []).append((student, login))
+    return roster
+
+
+def submitters(name, path, roster):
+    """([(student, login)], note) of a submission: the roster's rows for it,
+    else its name for both. A submission_metadata.json inside the submission
+    is the student's own file and is never believed (a student could name
+    another student in it); note says that it was ignored."""
+    note = None
+    if os.path.isdir(path) and os.path.lexists(os.path.join(path, METADATA)):
+        note = ('%s: its %s was ignored (who submitted comes from the submission\'s '
+                'name or from --roster, never from a file inside the submission)'
+                % (name, METADATA))
+    if roster is not None and name not in roster:
+        note = (note + '; ' if note else '%s: ' % name) + \
+            'not in the roster: graded under its name'
+    return (roster or {}).get(name) or [(name, name)], note
 
 
 def write_gradebook(path, exercises_graded, students):
@@ -1009,8 +1110,20 @@ def write_gradebook(path, exercises_graded, students):
 
 def grade_batch(args):
     out = os.path.abspath(args.out or os.path.join(args.root, 'build', 'grade', 'batch'))
+    found, skipped = submissions_in(args.batch)
+    subs = [(name, path) for name, path, problem in found if problem is None]
+    refused = [(os.path.basename(path), name, problem) for name, path, problem in found
+               if problem]
+    # The roster is read before anything is graded: a mistake in it stops
+    # the batch while it costs nothing.
+    roster = None
+    if args.roster:
+        try:
+            roster = read_roster(args.roster, {name for name, _, _ in found})
+        except RosterError as e:
+            log('grade-batch: %s' % e)
+            return 2
     os.makedirs(out, exist_ok=True)
-    subs = submissions_in(args.batch)
     start = time.time()
     rows, done, broken = [], [0], []
     # The chapters are resolved once, here, so that every student is graded
@@ -1038,28 +1151,38 @@ def grade_batch(args):
     if args.allow_changes_outside_exercises:
         forwarded.append('--allow-changes-outside-exercises')
 
-    targets, used, identities, notes = {}, set(), {}, []
+    identities, notes = {}, []
     for student, path in subs:
-        identities[path], problem = submitters(student, path)
-        if problem:
-            notes.append(problem)
-        name = re.sub(r'[^\w.-]', '_', student)
-        while name in used or name in ('grades.csv', 'gradebook.csv', 'cache'):
-            name += '_'
-        used.add(name)
-        targets[path] = os.path.join(out, name)
+        identities[path], note = submitters(student, path, roster)
+        if note:
+            notes.append(note)
+    # A refused submission is not graded: it gets a row with no number in
+    # both CSV files, like a grader error, so that the instructor sees it
+    # where the grades are. The row names it "REFUSED FILE" (or by its roster
+    # rows): the file name alone could be "=..." or "-...", which a
+    # spreadsheet opening the CSV takes for a formula.
+    book_rows = []
+    for entry, name, problem in refused:
+        shown = 'REFUSED ' + printable(entry)
+        rows.append((shown, '', '', '', ''))
+        book_rows.extend((student, login, None) for student, login in
+                         (roster or {}).get(name) or [(shown, shown)])
+        print('%s: %s' % (shown, problem), flush=True)
 
     def one(item):
         student, path = item
-        target = targets[path]
-        shutil.rmtree(target, ignore_errors=True)   # never read an old result
+        target = os.path.join(out, student)
         t0 = time.time()
-        code, output = grade_build.run([sys.executable, os.path.abspath(__file__), path,
-                                        '--out', target, '--quiet'] + forwarded,
-                                       timeout=args.submission_time_limit)
-        return os.path.basename(target), target, code, output, time.time() - t0, path
+        try:
+            remove_inside(out, target)      # never read an old result
+        except ValueError as e:
+            return student, target, None, str(e), 0.0, path
+        # '--' before the path: a name that looks like an option stays a path.
+        code, output = grade_build.run([sys.executable, os.path.abspath(__file__),
+                                        '--out', target, '--quiet'] + forwarded +
+                                       ['--', path], timeout=args.submission_time_limit)
+        return student, target, code, output, time.time() - t0, path
 
-    book_rows = []
     workers = max(1, min(2, args.workers))
     with concurrent.futures.ThreadPoolExecutor(workers) as pool:
         futures = [pool.submit(one, item) for item in subs]
@@ -1067,6 +1190,8 @@ def grade_batch(args):
             student, target, code, output, elapsed, path = future.result()
             done[0] += 1
             try:
+                if code is None:
+                    raise ValueError(output)
                 with open(os.path.join(target, 'results.json'), encoding='utf-8') as f:
                     data = json.load(f)
                 points = {}
@@ -1100,20 +1225,45 @@ def grade_batch(args):
     logins = [login for _, login, _ in book_rows]
     for login in sorted({x for x in logins if logins.count(x) > 1}):
         notes.append('%s is in more than one submission: check the gradebook' % login)
+    for entry, reason in skipped:
+        notes.append('%s: %s: skipped' % (printable(entry), reason))
+    for entry, _, problem in refused:
+        notes.append('REFUSED %s, not graded (its rows have no number): %s; rename it '
+                     'and grade it again' % (printable(entry), problem))
     for note in notes:
         print('grade-batch: ' + note, file=sys.stderr)
     totals = {}
+    graded = {name for name, _ in subs}
     for student, _, _, points, _ in rows:
-        totals[student] = totals.get(student, 0) + float(points or 0)
+        if student in graded:
+            totals[student] = totals.get(student, 0) + float(points or 0)
     values = sorted(totals.values())
-    print('graded %d submissions in %.1f s (%d with grader errors%s); scores: min %g, '
+    print('graded %d submissions in %.1f s (%d with grader errors%s)%s; scores: min %g, '
           'median %g, max %g; %s' % (len(subs), time.time() - start, len(broken),
                                     ': ' + ', '.join(broken) if broken else '',
+                                    '; %d REFUSED (not graded): %s' % (
+                                        len(refused), ', '.join(printable(e) for e, _, _ in
+                                                                refused)) if refused else '',
                                     values[0] if values else 0,
                                     values[len(values) // 2] if values else 0,
                                     values[-1] if values else 0, csv_path))
     print('gradebook (one row per student): %s' % gradebook)
     return 0
+
+
+def default_out(parser, root, submission):
+    """build/grade/NAME for a submission graded alone. NAME comes from the
+    submission's path, so it must be a safe name: "..", "." or "" (from
+    SUBMISSION=.., ., /, ...tar.gz) would put the results in build/ or
+    build/grade/, and "cache" or "batch" among the build cache's or a
+    batch's files."""
+    label = ARCHIVE_SUFFIX.sub('', os.path.basename(os.path.normpath(submission)))
+    problem = name_problem(label) or ('%s is a directory of the grader\'s own' % label
+                                      if label.lower() in ('cache', 'batch') else None)
+    if problem:
+        parser.error('cannot name the results after %s (%s): give --out DIR (OUT= for '
+                     'make)' % (printable(submission), problem))
+    return os.path.join(root, 'build', 'grade', label)
 
 
 class FlagsFileParser(argparse.ArgumentParser):
@@ -1162,6 +1312,10 @@ def main(argv=None):
                         help='a course plan (docs/course.md): grade the exercises of '
                         '--assignment with the plan\'s points')
     parser.add_argument('--assignment', metavar='NAME', help='an assignment of --plan')
+    parser.add_argument('--roster', metavar='FILE',
+                        help='batch: a CSV of submission,student,login rows (several '
+                        'rows for a group) saying whose each submission is (default: '
+                        'its name)')
     parser.add_argument('--allow-changes-outside-exercises', action='store_true')
     parser.add_argument('--quiet', action='store_true')
     args = parser.parse_args(argv)
@@ -1178,6 +1332,8 @@ def main(argv=None):
                      '--allow-no-sandbox for a grade that the code could forge')
     if sandbox.isolation() == 'unprivileged user':
         sandbox.protect([os.path.join(args.root, 'tests', 'hidden'), args.cache])
+    if args.roster and not args.batch:
+        parser.error('--roster goes with --batch')
     if args.batch:
         if not os.path.isdir(args.batch):
             parser.error('--batch %s is not a directory' % args.batch)
@@ -1186,9 +1342,7 @@ def main(argv=None):
         parser.error('give a SUBMISSION (a directory, .tar.gz or .zip) or --batch DIR')
     if not os.path.exists(args.submission):
         parser.error('%s does not exist' % args.submission)
-    label = re.sub(r'\.(tar\.gz|tgz|zip)$', '', os.path.basename(
-        os.path.normpath(args.submission)))
-    out = os.path.abspath(args.out or os.path.join(args.root, 'build', 'grade', label))
+    out = os.path.abspath(args.out or default_out(parser, args.root, args.submission))
     report = grade(args, os.path.abspath(args.submission), out)
     if not args.quiet:
         with open(os.path.join(out, 'results.txt'), encoding='utf-8') as f:

@@ -380,13 +380,19 @@ def make_submissions(ns, root=ROOT):
         z.writestr('lrt/README.txt', 'my work')
     put('student', student, '05-slab-test.md')        # no chapters/ folder
     put('two_of_three', two_of_three)
-    # A group submission as Gradescope exports it: its metadata names the
-    # students (the gradebook gives each a row).
+    # A group submission: the instructor's roster names its students (the
+    # gradebook gives each a row). The metadata file inside it, which a
+    # student could write, names someone else and is ignored.
     put('group', two_of_three)
     ns.group = [{'name': 'Ada Lovelace', 'email': 'ada@example.edu', 'id': 11},
                 {'name': 'Alan Turing', 'email': 'alan@example.edu', 'id': 12}]
+    ns.roster = os.path.join(ns.tmp, 'roster.csv')
+    with open(ns.roster, 'w') as f:
+        f.write('submission,student,login\n' + ''.join(
+            'group,%s,%s\n' % (u['name'], u['email']) for u in ns.group))
     with open(os.path.join(ns.subs, 'group', 'submission_metadata.json'), 'w') as f:
-        json.dump({'id': 1, 'users': ns.group}, f)
+        json.dump({'id': 1, 'users': [{'name': 'Victim', 'email': 'victim@example.edu',
+                                       'id': 13}]}, f)
     put('compile_error', ns.broken)
     put('crashes', crashes)
     put('hangs', hangs)
@@ -496,7 +502,8 @@ class GradeTest(unittest.TestCase):
         # test > log.test` writes one: it is no attack's doing.
         with log_written(os.path.join(ROOT, '.lrt-test-log-%d' % os.getpid())):
             cls.before, cls.cache_before = cls.watch()
-            proc = subprocess.run(grade + ['--batch', cls.subs, '--out', cls.out],
+            proc = subprocess.run(grade + ['--batch', cls.subs, '--out', cls.out,
+                                           '--roster', cls.roster],
                                   cwd=cls.copy, env=env, capture_output=True, text=True)
             cls.batch_output = proc.stdout + proc.stderr
             cls.batch_status = proc.returncode
@@ -789,6 +796,12 @@ class GradeTest(unittest.TestCase):
             self.assertEqual([float(v) for v in got[who][:-1]], values, who)
             self.assertAlmostEqual(float(got[who][-1]), self.expected_score(expected),
                                    places=3)
+
+    def test_metadata_inside_a_submission_is_ignored(self):
+        with open(os.path.join(self.out, 'gradebook.csv'), newline='') as f:
+            logins = [r[1] for r in csv.reader(f)]
+        self.assertNotIn('victim@example.edu', logins)
+        self.assertIn('group: its submission_metadata.json was ignored', self.batch_output)
 
     # -- Grading by a course plan (docs/course.md) ---------------------------
 

@@ -57,6 +57,7 @@ import concurrent.futures
 import csv
 import difflib
 import hashlib
+import io
 import json
 import os
 import re
@@ -574,10 +575,20 @@ def fence_safe(text):
 
 
 def atomic_write(path, text):
-    tmp = path + '.tmp'
-    with open(tmp, 'w', encoding='utf-8') as f:
-        f.write(text)
-    os.replace(tmp, path)
+    """Writes path whole or not at all: a temporary file beside it, renamed
+    over it. The temporary file's name is new and random and it is created
+    exclusively, so that no link planted in the directory under a name
+    guessed in advance can turn the write to a file elsewhere."""
+    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path) or '.',
+                               prefix='.' + os.path.basename(path) + '.')
+    try:
+        with os.fdopen(fd, 'w', encoding='utf-8', newline='') as f:
+            f.write(text)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
 
 
 def clean(text, limit=MAX_SHOWN):
@@ -955,12 +966,12 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
 # that are one plain path component qualify: a name such as ".." or "" would
 # make OUT/NAME a directory outside OUT's results (OUT's parent, or OUT
 # itself), which the batch empties before grading.
-SAFE_NAME = re.compile(r'^[A-Za-z0-9][A-Za-z0-9._-]*$')
+SAFE_NAME = re.compile(r'[A-Za-z0-9][A-Za-z0-9._-]*')
 MAX_NAME = 100
-# Files and directories of OUT that are not a student's results (the .tmp
-# files are written, then renamed over the others).
-RESERVED_NAMES = ('grades.csv', 'gradebook.csv', 'grades.csv.tmp', 'gradebook.csv.tmp',
-                  'cache')
+# Files and directories of OUT that are not a student's results (the
+# temporary files that atomic_write() renames over them start with a dot,
+# which no safe name does).
+RESERVED_NAMES = ('grades.csv', 'gradebook.csv', 'cache')
 ARCHIVE_SUFFIX = re.compile(r'\.(tar\.gz|tgz|zip)$')
 
 
@@ -972,7 +983,7 @@ def printable(name):
 
 def name_problem(name):
     """Why a submission's name cannot name its results (None if it can)."""
-    if not SAFE_NAME.match(name):
+    if not SAFE_NAME.fullmatch(name):      # (match's $ also takes a final newline)
         return ('a name must start with a letter or digit and hold only letters, '
                 'digits, ".", "_" and "-" (ASCII)')
     if '..' in name:
@@ -985,28 +996,32 @@ def name_problem(name):
 
 
 def submissions_in(directory):
-    """(submissions, skipped): submissions are (name, path, problem) for each
-    subdirectory and .tar.gz/.tgz/.zip archive of directory, problem saying
-    why the name is refused (None if it is not); skipped are (entry, reason)
-    for every other entry, so that nothing is left out without a word."""
-    found, skipped = [], []
+    """[(name, path, problem)] for every entry of directory, problem saying
+    why it is refused (None if it is graded): a submission is a subdirectory
+    or a .tar.gz/.tgz/.zip file with a safe name. Every other entry is
+    refused, so that it gets a row of its own and nothing is left out
+    without the instructor seeing it; a link is never followed (it could
+    name any file the grader can read)."""
+    found = []
     for entry in sorted(os.listdir(directory)):
         full = os.path.join(directory, entry)
-        if os.path.isdir(full) and not os.path.islink(full):
-            name = entry
-        elif ARCHIVE_SUFFIX.search(entry) and os.path.isfile(full):
-            name = ARCHIVE_SUFFIX.sub('', entry)
+        name = ARCHIVE_SUFFIX.sub('', entry)
+        if os.path.islink(full):
+            problem = 'a link, not followed'
+        elif os.path.isdir(full):
+            name, problem = entry, name_problem(entry)
+        elif os.path.isfile(full) and ARCHIVE_SUFFIX.search(entry):
+            problem = name_problem(name)
         else:
-            skipped.append((entry, 'neither a directory nor a .tar.gz, .tgz or .zip file'))
-            continue
-        found.append((name, full, name_problem(name)))
+            problem = 'neither a directory nor a .tar.gz, .tgz or .zip file'
+        found.append((name, full, problem))
     # Two submissions with one name (alice/ and alice.zip) would share a
     # results directory and a student: neither is graded.
     names = [name for name, _, _ in found]
     found = [(name, full, problem or ('another submission is also named %s' % name
                                       if names.count(name) > 1 else None))
              for name, full, problem in found]
-    return found, skipped
+    return found
 
 
 def remove_inside(out, target):
@@ -1086,6 +1101,13 @@ def submitters(name, path, roster):
     return (roster or {}).get(name) or [(name, name)], note
 
 
+def csv_text(rows):
+    """The CSV text of rows (csv's own quoting and line ends)."""
+    text = io.StringIO()
+    csv.writer(text).writerows(rows)
+    return text.getvalue()
+
+
 def write_gradebook(path, exercises_graded, students):
     """One row per student: Student, SIS Login ID, Section (empty), a column
     per exercise (its points), Total. Canvas matches the rows to its students
@@ -1094,23 +1116,21 @@ def write_gradebook(path, exercises_graded, students):
     (a "points possible" row would be a student that Moodle cannot find).
     students: [(student, login, {exercise: points} or None if the grader
     failed)]."""
-    with open(path + '.tmp', 'w', newline='', encoding='utf-8') as f:
-        w = csv.writer(f)
-        w.writerow(['Student', 'SIS Login ID', 'Section'] +
-                   [e for e, _ in exercises_graded] + ['Total'])
-        for student, login, points in sorted(students, key=lambda s: (s[1], s[0])):
-            if points is None:      # the grader failed: no number rather than a wrong one
-                w.writerow([student, login, ''] + [''] * (len(exercises_graded) + 1))
-                continue
-            values = [points.get(e, 0) for e, _ in exercises_graded]
-            w.writerow([student, login, ''] + ['%g' % round(v, 4) for v in values] +
-                       ['%g' % round(sum(values), 4)])
-    os.replace(path + '.tmp', path)
+    rows = [['Student', 'SIS Login ID', 'Section'] + [e for e, _ in exercises_graded] +
+            ['Total']]
+    for student, login, points in sorted(students, key=lambda s: (s[1], s[0])):
+        if points is None:      # the grader failed: no number rather than a wrong one
+            rows.append([student, login, ''] + [''] * (len(exercises_graded) + 1))
+            continue
+        values = [points.get(e, 0) for e, _ in exercises_graded]
+        rows.append([student, login, ''] + ['%g' % round(v, 4) for v in values] +
+                    ['%g' % round(sum(values), 4)])
+    atomic_write(path, csv_text(rows))
 
 
 def grade_batch(args):
     out = os.path.abspath(args.out or os.path.join(args.root, 'build', 'grade', 'batch'))
-    found, skipped = submissions_in(args.batch)
+    found = submissions_in(args.batch)
     subs = [(name, path) for name, path, problem in found if problem is None]
     refused = [(os.path.basename(path), name, problem) for name, path, problem in found
                if problem]
@@ -1213,11 +1233,9 @@ def grade_batch(args):
             print('[%-30s] %d/%d %s: %s (%.1f s)' % (bar, done[0], len(subs), student, score,
                                                      elapsed), flush=True)
     csv_path = os.path.join(out, 'grades.csv')
-    with open(csv_path + '.tmp', 'w', newline='') as f:
-        w = csv.writer(f)
-        w.writerow(['student', 'chapter', 'exercise', 'points', 'max_points'])
-        w.writerows(sorted(rows, key=lambda r: (r[0], str(r[1]), str(r[2]))))
-    os.replace(csv_path + '.tmp', csv_path)
+    atomic_write(csv_path, csv_text(
+        [['student', 'chapter', 'exercise', 'points', 'max_points']] +
+        sorted(rows, key=lambda r: (r[0], str(r[1]), str(r[2])))))
     # The gradebook: one row per student, the exercises in the book's order.
     gradebook = os.path.join(out, 'gradebook.csv')
     write_gradebook(gradebook, [(e.id, selected[e.id]) for e in book.exercises
@@ -1225,8 +1243,6 @@ def grade_batch(args):
     logins = [login for _, login, _ in book_rows]
     for login in sorted({x for x in logins if logins.count(x) > 1}):
         notes.append('%s is in more than one submission: check the gradebook' % login)
-    for entry, reason in skipped:
-        notes.append('%s: %s: skipped' % (printable(entry), reason))
     for entry, _, problem in refused:
         notes.append('REFUSED %s, not graded (its rows have no number): %s; rename it '
                      'and grade it again' % (printable(entry), problem))

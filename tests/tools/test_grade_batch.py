@@ -40,7 +40,9 @@ HOSTILE = [('...tar.gz', True), ('..tar.gz', True), ('.tar.gz', True), ('.tgz', 
            ('.hidden', False), ('-rf', False), ('with space', False),
            ('\u00fcn\u00efcode', False), ('new\nline', False), ('cache.zip', True),
            ('grades.csv.tgz', True), ('gradebook.csv', False), ('a..b.zip', True),
-           ('=1+1.zip', True)]
+           ('=1+1.zip', True), ('alice\n', False)]
+# Entries that are no submission at all: each gets a refused row too.
+NOT_SUBMISSIONS = ['notes.txt', 'bob.ZIP', 'carol.zip']
 
 
 def write(path, text):
@@ -52,6 +54,17 @@ def write(path, text):
 def empty_archive(path):
     with tarfile.open(path, 'w:gz'):
         pass
+
+
+def not_submissions(subs, elsewhere):
+    """NOT_SUBMISSIONS in subs: a text file, an archive whose suffix is not
+    one the grader reads (names are case-sensitive), and a link to an archive
+    in elsewhere (whose member names the batch must never show)."""
+    write(os.path.join(subs, 'notes.txt'), 'not a submission')
+    empty_archive(os.path.join(subs, 'bob.ZIP'))
+    target = os.path.join(elsewhere, 'private.zip')
+    empty_archive(target)
+    os.symlink(target, os.path.join(subs, 'carol.zip'))
 
 
 def snapshot(top, leave_out):
@@ -79,7 +92,7 @@ class NameTest(unittest.TestCase):
         for name in ('alice', 'submission_123', 'Bob.Smith', 'x-1', '7'):
             self.assertIsNone(grade.name_problem(name), name)
 
-    def test_submissions_in_lists_refused_skipped_and_duplicates(self):
+    def test_every_entry_is_graded_or_refused(self):
         with tempfile.TemporaryDirectory() as tmp:
             for entry, archive in HOSTILE:
                 if archive:
@@ -89,15 +102,18 @@ class NameTest(unittest.TestCase):
             os.mkdir(os.path.join(tmp, 'alice'))
             os.mkdir(os.path.join(tmp, 'bob'))
             empty_archive(os.path.join(tmp, 'bob.zip'))
-            write(os.path.join(tmp, 'notes.txt'), 'not a submission')
-            found, skipped = grade.submissions_in(tmp)
+            with tempfile.TemporaryDirectory() as elsewhere:
+                not_submissions(tmp, elsewhere)
+                found = grade.submissions_in(tmp)
         problems = {os.path.basename(path): problem for _, path, problem in found}
         self.assertEqual({e for e, p in problems.items() if p is None}, {'alice'})
         for entry, _ in HOSTILE:
             self.assertTrue(problems[entry], entry)
         self.assertIn('another submission is also named bob', problems['bob'])
         self.assertIn('another submission is also named bob', problems['bob.zip'])
-        self.assertEqual([e for e, _ in skipped], ['notes.txt'])
+        self.assertIn('neither a directory nor', problems['notes.txt'])
+        self.assertIn('neither a directory nor', problems['bob.ZIP'])
+        self.assertIn('a link, not followed', problems['carol.zip'])
 
     def test_printable_escapes_control_characters(self):
         self.assertEqual(grade.printable('new\nline\x1b'), 'new\\nline\\x1b')
@@ -249,8 +265,14 @@ class HostileBatchTest(unittest.TestCase):
                 empty_archive(os.path.join(subs, entry))
             else:
                 os.makedirs(os.path.join(subs, entry))
+        not_submissions(subs, tmp)
         for name in ('alice', 'team1', 'mallory'):
             write(os.path.join(subs, name, 'notes.txt'), 'no chapter here')
+        # Links planted in OUT under the names that the batch's files had while
+        # being written: a write through one would change a file outside OUT.
+        write(os.path.join(tmp, 'victim.txt'), 'a file outside OUT')
+        for planted in ('grades.csv.tmp', 'gradebook.csv.tmp'):
+            os.symlink(os.path.join(tmp, 'victim.txt'), os.path.join(out, planted))
         write(os.path.join(subs, 'mallory', grade.METADATA),
               '{"users": [{"name": "Victim", "email": "victim@x", "id": 7}]}')
         roster = os.path.join(tmp, 'roster.csv')
@@ -279,11 +301,13 @@ class HostileBatchTest(unittest.TestCase):
         self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
         # Nothing outside OUT changed; in OUT, only the results were written.
         self.assertEqual(snapshot(tmp, out), before)
-        self.assertEqual(sorted(os.listdir(out)), ['alice', 'gradebook.csv', 'grades.csv',
-                                                   'mallory', 'sentinel', 'team1'])
+        self.assertEqual(sorted(os.listdir(out)), ['alice', 'gradebook.csv', 'gradebook.csv.tmp',
+                                                   'grades.csv', 'grades.csv.tmp', 'mallory',
+                                                   'sentinel', 'team1'])
         self.assertFalse(os.path.exists(os.path.join(out, 'alice', 'stale.txt')))
         self.assertIn('graded 3 submissions', proc.stdout)
-        for entry, _ in HOSTILE:
+        refused_entries = [e for e, _ in HOSTILE] + NOT_SUBMISSIONS
+        for entry in refused_entries:
             shown = grade.printable(entry)
             self.assertIn('grade-batch: REFUSED %s, not graded' % shown, proc.stderr)
             self.assertIn(shown, proc.stdout.split('REFUSED (not graded): ')[1])
@@ -293,7 +317,7 @@ class HostileBatchTest(unittest.TestCase):
             rows = {(r[0], r[1]): r[3:] for r in list(csv.reader(f))[1:]}
         graded = {('alice', 'alice'), ('mallory', 'mallory'), ('Ada Lovelace', 'ada@x'),
                   ('Alan Turing', 'alan@x')}
-        refused = {('REFUSED ' + grade.printable(e),) * 2 for e, _ in HOSTILE}
+        refused = {('REFUSED ' + grade.printable(e),) * 2 for e in refused_entries}
         self.assertEqual(set(rows), graded | refused)
         for who in graded:
             self.assertEqual(rows[who][-1], '0', who)
@@ -302,8 +326,10 @@ class HostileBatchTest(unittest.TestCase):
         self.assertIn('mallory: its submission_metadata.json was ignored', proc.stderr)
         with open(os.path.join(out, 'grades.csv'), newline='', encoding='utf-8') as f:
             points = [(r['student'], r['points']) for r in csv.DictReader(f)]
-        for entry, _ in HOSTILE:
+        for entry in refused_entries:
             self.assertIn(('REFUSED ' + grade.printable(entry), ''), points)
+        # What the linked archive holds was never read.
+        self.assertNotIn('private', proc.stdout + proc.stderr)
 
     def test_bubblewrap(self):
         self.check(fallback=False)

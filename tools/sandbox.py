@@ -29,6 +29,7 @@ import os
 import shutil
 import stat
 import subprocess
+import sys
 import tempfile
 
 # The unprivileged user the sandbox runs as when the grader is root: a uid
@@ -92,8 +93,23 @@ def sandbox_uid():
         except OSError:
             os.close(fd)
             continue
+        end_processes_of(uid)
         return uid      # fd stays open, and the lock held, until this process ends
     raise RuntimeError('no free sandbox uid: %d graders are running' % len(SANDBOX_UIDS))
+
+
+def end_processes_of(uid):
+    """Kills every process of uid. The judge ends what each worker leaves
+    (tests/calls/judge.cpp), but a grader that was killed outright ended
+    nothing: a process its student left, a setsid() daemon in the fallback,
+    would still run as the uid that the next grader takes, and could kill
+    that grader's workers. kill(-1, ...) from a process of that uid reaches
+    every process of the uid but itself."""
+    subprocess.run(['setpriv', '--reuid=%d' % uid, '--regid=%d' % uid, '--clear-groups',
+                    '--', sys.executable, '-c',
+                    'import os, signal\ntry:\n    os.kill(-1, signal.SIGKILL)\n'
+                    'except ProcessLookupError:\n    pass\n'],
+                   stdin=subprocess.DEVNULL, check=True)
 
 
 def _drop_privileges():

@@ -31,6 +31,7 @@
 
 #include <gtest/gtest-spi.h>
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -46,6 +47,8 @@
 #include <fstream>
 #include <iostream>
 #include <random>
+#include <sstream>
+#include <vector>
 
 namespace lrt {
 namespace calls {
@@ -97,31 +100,50 @@ std::string SignalName(int sig) {
     }
 }
 
-// The processes that a worker's sandbox leaves when it ends. bubblewrap's
-// first process in the sandbox's PID namespace is a child of the bwrap that
-// the judge started, and often ends just after it: an orphan. The judge is a
-// child subreaper (main), so orphans become its children, not those of the
-// machine's first process, which in a container may never reap them (a
-// shell, or a supervisor that reaps late). Every process of the sandbox's
-// user, a zombie too, counts against that user's process limit: unreaped,
-// the orphans of a few dozen crashed workers (code that calls exit() in
-// every call) used it up, no worker could start any more, and the tests of
-// the next exercises failed with "the code exited with status 1", bwrap's
-// failure to fork counted as the student's crash.
-void ReapEndedChildren() {
-    while (waitpid(-1, nullptr, WNOHANG) > 0) {
+// The processes that a worker leaves when it ends. The judge is a child
+// subreaper (main): every process that loses its parent below the judge
+// becomes the judge's child, not a child of the machine's first process.
+// - With bubblewrap, the sandbox's own first process in its PID namespace
+//   outlives the bwrap that the judge waits for by a moment. Left to the
+//   machine's first process, which in a container may never reap, such
+//   zombies counted against the sandbox user's process limit: after a few
+//   dozen crashed workers (code that calls exit() in every call) no worker
+//   could start, and the next exercises' tests failed with "the code exited
+//   with status 1", the sandbox's failure counted as the student's crash.
+// - Without namespaces (the fallback), nothing ends a worker's own children
+//   with it: a setsid() daemon would live on as the sandbox's user, and
+//   could kill the workers of the next exercise or the next grading.
+// So whenever a worker has ended, every other child of the judge is killed
+// and reaped, round after round, until none is left: killing one makes its
+// own children the judge's.
+std::vector<pid_t> Children() {
+    std::vector<pid_t> found;
+    DIR *proc = opendir("/proc");
+    if (proc == nullptr) return found;
+    std::string self = std::to_string(getpid());
+    while (dirent *entry = readdir(proc)) {
+        if (entry->d_name[0] < '1' || entry->d_name[0] > '9') continue;
+        std::ifstream in(std::string("/proc/") + entry->d_name + "/stat");
+        std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        // pid (comm) state ppid ...: comm may hold spaces and parentheses.
+        size_t close = stat.rfind(')');
+        if (close == std::string::npos) continue;
+        std::istringstream fields(stat.substr(close + 1));
+        std::string state, ppid;
+        if (fields >> state >> ppid && ppid == self) found.push_back(std::atoi(entry->d_name));
     }
+    closedir(proc);
+    return found;
 }
 
-// At the end of the judge: waits until its last child has ended, for at most
-// a few seconds (an orphan of the last worker is ending). What is left
-// after that (a process that escaped a sandbox without a PID namespace)
-// goes to the machine's first process when the judge exits.
-void ReapChildrenBeforeExit() {
-    for (int waited = 0; waited < 300; ++waited) {
-        pid_t pid = waitpid(-1, nullptr, WNOHANG);
-        if (pid < 0) return;   // no child left
-        if (pid == 0) usleep(10000);
+void EndChildren() {
+    for (int round = 0; round < 1000; ++round) {
+        std::vector<pid_t> children = Children();
+        if (children.empty()) return;
+        for (pid_t child : children) kill(child, SIGKILL);
+        for (pid_t child : children)
+            while (waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
+            }
     }
 }
 
@@ -146,7 +168,6 @@ class Worker {
             return false;
         }
         ++starts;
-        ReapEndedChildren();
         int toWorker[2], fromWorker[2];
         if (pipe2(toWorker, O_CLOEXEC) != 0 || pipe2(fromWorker, O_CLOEXEC) != 0) {
             *why = "pipe() failed";
@@ -213,7 +234,7 @@ class Worker {
             }
         }
         pid = -1;
-        ReapEndedChildren();
+        EndChildren();
         if (WIFSIGNALED(status)) return "killed by " + SignalName(WTERMSIG(status));
         if (WIFEXITED(status)) {
             int code = WEXITSTATUS(status);
@@ -610,8 +631,7 @@ int main(int argc, char **argv) {
     using lrt::calls::config;
     // The judge writes to pipes of workers that may have died.
     signal(SIGPIPE, SIG_IGN);
-    // The orphans of the workers' sandboxes come to the judge
-    // (ReapEndedChildren).
+    // What the workers leave comes to the judge (EndChildren).
     prctl(PR_SET_CHILD_SUBREAPER, 1);
     std::vector<char *> rest{argv[0]};
     std::string results;
@@ -651,6 +671,5 @@ int main(int argc, char **argv) {
     lrt::calls::worker = &w;
     int status = RUN_ALL_TESTS();
     w.Stop();
-    lrt::calls::ReapChildrenBeforeExit();
     return status;
 }

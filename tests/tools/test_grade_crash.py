@@ -1,15 +1,22 @@
-"""A crash in one exercise costs no other exercise a point (docs/grading.md).
+"""What one exercise's code does costs no other exercise a point, and
+nothing of it outlives the grading (docs/grading.md).
 
-A chapter-5 submission whose ex-5.9 calls exit(0) in every call, and whose
-other exercises are the book's code, must score exactly the other exercises'
-points, however many workers the crashing exercise goes through. The grader
-runs here under a parent that never reaps orphans, as in a container whose
-first process is no init: whatever the sandboxes leave behind stays there,
-counts against the sandbox user's process limit, and is counted by the test.
-Both isolation modes: bubblewrap, and the fallback without namespaces (a
-`bwrap` on PATH that fails, as where a container forbids namespaces)."""
+- A chapter-5 submission whose ex-5.9 calls exit(0) in every call, and
+  whose other exercises are the book's code, must score exactly the other
+  exercises' points, however many workers the crashing exercise goes
+  through.
+- One whose ex-5.9 is the book's code but starts a setsid() daemon in each
+  of its workers must score full points, and no daemon may be left.
+
+The grader runs here under a parent that never reaps orphans, as in a
+container whose first process is no init: whatever the sandboxes leave
+behind stays there, counts against the sandbox user's process limit, and is
+counted by the test. Both isolation modes: bubblewrap, and the fallback
+without namespaces (a `bwrap` on PATH that fails, as where a container
+forbids namespaces)."""
 import json
 import os
+import platform
 import shutil
 import subprocess
 import sys
@@ -41,20 +48,55 @@ print(json.dumps({'status': status, 'left': left}))
 '''
 
 
+# The daemon, in raw x86-64 system calls (the exercise's code cannot include
+# headers): once per worker, fork; the child leaves the session (setsid),
+# takes a name the test looks for (prctl PR_SET_NAME) and waits for ever.
+DAEMON = 'lrtdaemon'
+START_DAEMON = r"""{
+  static int lrtStarted = 0;
+  if (!lrtStarted) {
+    lrtStarted = 1;
+    long lrtPid;
+    asm volatile("syscall" : "=a"(lrtPid) : "a"(57L) : "rcx", "r11", "memory");
+    if (lrtPid == 0) {
+      static const char lrtName[16] = "%s";
+      long lrtIgnored;
+      asm volatile("syscall" : "=a"(lrtIgnored) : "a"(112L) : "rcx", "r11", "memory");
+      asm volatile("syscall" : "=a"(lrtIgnored) : "a"(157L), "D"(15L), "S"(lrtName)
+                   : "rcx", "r11", "memory");
+      for (;;) asm volatile("syscall" : "=a"(lrtIgnored) : "a"(34L) : "rcx", "r11", "memory");
+    }
+  }
+}""" % DAEMON
+
+
+def daemons():
+    """The pids of the daemons that are still there."""
+    found = []
+    for pid in filter(str.isdigit, os.listdir('/proc')):
+        try:
+            with open('/proc/%s/comm' % pid) as f:
+                if f.read().strip() == DAEMON:
+                    found.append(pid)
+        except OSError:
+            pass
+    return found
+
+
 class CrashInOneExerciseTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         book = tg.book_exercises()
         owner = {f: e for e, x in book.items() for f in x['fragments']}
         cls.crashing = owner[tg.F9]
-        cls.others = {e: x['points'] for e, x in book.items()
-                      if x['chapter'] == '05' and e != cls.crashing}
+        cls.points = {e: x['points'] for e, x in book.items() if x['chapter'] == '05'}
         cls.tmp = tempfile.mkdtemp(prefix='lrt-grade-crash-')
-        chapter = os.path.join(cls.tmp, 'submission', tg.CHAPTER)
-        os.makedirs(os.path.dirname(chapter))
-        with open(chapter, 'w', encoding='utf-8') as f:
-            f.write(tg.inject(tg.read(os.path.join(tg.ROOT, tg.CHAPTER)), tg.F9,
-                              '__builtin_exit(0);'))
+        book_chapter = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
+        for name, code in (('exits', '__builtin_exit(0);'), ('daemon', START_DAEMON)):
+            chapter = os.path.join(cls.tmp, name, tg.CHAPTER)
+            os.makedirs(os.path.dirname(chapter))
+            with open(chapter, 'w', encoding='utf-8') as f:
+                f.write(tg.inject(book_chapter, tg.F9, code))
         # A failing bwrap, for the fallback.
         cls.no_bwrap = os.path.join(cls.tmp, 'no-bwrap')
         os.makedirs(cls.no_bwrap)
@@ -67,8 +109,10 @@ class CrashInOneExerciseTest(unittest.TestCase):
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
-    def grade(self, mode, fallback):
-        out = os.path.join(self.tmp, mode)
+    def grade(self, submission, mode, fallback):
+        """Grades the submission in the mode; its results.json, once it is
+        checked that nothing of the grading is left."""
+        out = os.path.join(self.tmp, 'out', submission, mode)
         env = dict(os.environ)
         if fallback:
             env['PATH'] = self.no_bwrap + os.pathsep + env['PATH']
@@ -76,7 +120,7 @@ class CrashInOneExerciseTest(unittest.TestCase):
             [sys.executable, '-c', NEVER_REAPS, sys.executable, tg.GRADE,
              '--cache', os.path.join(self.tmp, 'cache-' + mode), '--out', out,
              '--chapters', '05', '--time-limit', str(tg.TIME_LIMIT),
-             os.path.join(self.tmp, 'submission')],
+             os.path.join(self.tmp, submission)],
             cwd=tg.ROOT, env=env, capture_output=True, text=True)
         self.assertEqual(proc.returncode, 0, proc.stderr)
         ended = json.loads(proc.stdout)
@@ -84,6 +128,13 @@ class CrashInOneExerciseTest(unittest.TestCase):
         with open(os.path.join(out, 'results.json'), encoding='utf-8') as f:
             results = json.load(f)
         self.assertIn(mode, results['output'])
+        # Nothing of the grading is left: no process and no zombie.
+        self.assertEqual(ended['left'], [])
+        self.assertEqual(daemons(), [])
+        return results
+
+    def check_exits(self, mode, fallback):
+        results = self.grade('exits', mode, fallback)
         for test in results['tests']:
             exercise = test['name'].split()[0]
             if exercise == self.crashing:
@@ -91,17 +142,61 @@ class CrashInOneExerciseTest(unittest.TestCase):
                 self.assertIn('CRASH', test['output'], test['name'])
             else:
                 self.assertEqual(test['status'], 'passed', (test['name'], test['output']))
-        self.assertAlmostEqual(results['score'], sum(self.others.values()), places=3)
-        # Nothing of the grading is left: no process and no zombie.
-        self.assertEqual(ended['left'], [])
+        others = sum(p for e, p in self.points.items() if e != self.crashing)
+        self.assertAlmostEqual(results['score'], others, places=3)
+
+    def check_daemon(self, mode, fallback):
+        results = self.grade('daemon', mode, fallback)
+        self.assertAlmostEqual(results['score'], sum(self.points.values()), places=3)
 
     @unittest.skipUnless(os.geteuid() == 0, 'the sandbox drops to its own user only as root')
     def test_bubblewrap(self):
-        self.grade('bubblewrap', fallback=False)
+        self.check_exits('bubblewrap', fallback=False)
 
     @unittest.skipUnless(os.geteuid() == 0, 'the fallback needs root')
     def test_fallback_without_namespaces(self):
-        self.grade('unprivileged user', fallback=True)
+        self.check_exits('unprivileged user', fallback=True)
+
+    @unittest.skipUnless(os.geteuid() == 0 and platform.machine() == 'x86_64',
+                         'root, and the daemon\'s x86-64 system calls')
+    def test_daemon_with_bubblewrap(self):
+        self.check_daemon('bubblewrap', fallback=False)
+
+    @unittest.skipUnless(os.geteuid() == 0 and platform.machine() == 'x86_64',
+                         'root, and the daemon\'s x86-64 system calls')
+    def test_daemon_without_namespaces(self):
+        self.check_daemon('unprivileged user', fallback=True)
+
+
+sys.path.insert(0, os.path.join(tg.ROOT, 'tools'))
+import sandbox  # noqa: E402
+
+
+@unittest.skipUnless(os.geteuid() == 0, 'only a root grader runs its sandboxes as their own user')
+class UidLeftoversTest(unittest.TestCase):
+    """A grader that was killed outright ended nothing: what its student left
+    runs on as the sandbox's uid, which the next grader takes."""
+
+    def test_ending_the_processes_of_a_uid(self):
+        # The last uid of the range, which no grader takes while fewer than
+        # 256 run.
+        uid = sandbox.SANDBOX_UIDS[-1]
+        left = subprocess.Popen(['setpriv', '--reuid=%d' % uid, '--regid=%d' % uid,
+                                 '--clear-groups', '--', 'sleep', '600'])
+        self.addCleanup(left.kill)
+        sandbox.end_processes_of(uid)
+        self.assertEqual(left.wait(timeout=10), -9)
+        sandbox.end_processes_of(uid)    # none left: no error either
+
+    def test_a_grader_ends_what_its_uid_left_before_it_uses_it(self):
+        ended = []
+        real = sandbox.end_processes_of
+        sandbox.end_processes_of = ended.append
+        try:
+            uid = sandbox.sandbox_uid.__wrapped__()
+        finally:
+            sandbox.end_processes_of = real
+        self.assertEqual(ended, [uid])
 
 
 if __name__ == '__main__':

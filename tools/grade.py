@@ -488,6 +488,25 @@ def judge_exercise(args, judge, worker, results, secret):
         atomic_write(kept, json.dumps([[r.status, r.failures] for r in results]))
 
 
+def read_report(path):
+    """{test: its line} from the judge's report, a line of JSON per test. A
+    line that cannot be read (the judge stopped in the middle of it) costs
+    its own test only: that test has no verdict, the others keep theirs."""
+    found = {}
+    try:
+        with open(path, 'rb') as f:
+            lines = f.readlines()
+    except OSError:
+        return found
+    for line in lines:
+        try:
+            test = json.loads(line.decode('utf-8'))
+            found[str(test['test'])] = test
+        except (ValueError, KeyError, TypeError):
+            continue
+    return found
+
+
 def run_judge(args, judge, worker, results, secret):
     with tempfile.TemporaryDirectory(prefix='lrt-judge-') as tmp, \
             tempfile.TemporaryDirectory(prefix='lrt-worker-') as shared:
@@ -516,14 +535,7 @@ def run_judge(args, judge, worker, results, secret):
                 'the judge ended with status %d' % proc.returncode
         except subprocess.TimeoutExpired:
             ended = 'the exercise took longer than %d s in all' % budget
-        found = {}
-        try:
-            with open(report, encoding='utf-8') as f:
-                for line in f:
-                    test = json.loads(line)
-                    found[test['test']] = test
-        except (OSError, ValueError, KeyError, TypeError):
-            pass
+        found = read_report(report)
         for r in results:
             test = found.get(r.full)
             if test is None:
@@ -911,7 +923,9 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
         report.write()
         judge = grade_build.judge(args.cache, root, number, jobs=args.build_jobs)
         builder = grade_build.WorkerBuild(args.cache, root, number, args.cxxflags.split(),
-                                          jobs=args.build_jobs)
+                                          jobs=args.build_jobs,
+                                          time_limit=args.compile_time_limit,
+                                          memory_mb=args.memory_limit)
         earlier = [p for p in ref_paths if exercises.chapter_number(p) < number]
         for exercise in chapter.exercises:
             mine = [r for r in results if r.exercise == exercise.id]
@@ -1314,7 +1328,8 @@ def main(argv=None):
                         'user can isolate the student\'s code')
     parser.add_argument('--memory-limit', type=int, default=1024,
                         help='MB of address space per test (0: none)')
-    parser.add_argument('--compile-time-limit', type=int, default=900)
+    parser.add_argument('--compile-time-limit', type=int, default=900,
+                        help='seconds to build the code of one exercise')
     parser.add_argument('--submission-time-limit', type=int, default=3600,
                         help='batch: seconds for one submission')
     parser.add_argument('--cxxflags', default=DEFAULT_CXXFLAGS)

@@ -19,8 +19,8 @@ Only the library's translation units that the chapter's calls need are
 compiled (the book's worker tells which); if the student's code needs more,
 the link says so and the rest is compiled too.
 
-Workers are cached by their tangled code (without #line directives) and
-flags: submissions whose code is the same share one build. With ccache
+Workers are cached by every byte of their tangled code (tangled without
+#line directives, so that prose edits do not move the code) and flags: submissions whose code is the same share one build. With ccache
 installed, translation units that equal an earlier build's are not compiled
 again. A worker that does not compile is tangled again with #line
 directives, so that the errors name the chapters' lines.
@@ -34,7 +34,10 @@ import re
 import shutil
 import subprocess
 import sys
+import signal
 import tempfile
+import threading
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -42,6 +45,14 @@ import sandbox  # noqa: E402
 
 JUDGE_CXXFLAGS = ['-std=c++17', '-O2', '-ffp-contract=off', '-w']
 WORKER_CXXFLAGS = ['-std=c++17', '-O0', '-ffp-contract=off', '-Wall', '-Wextra']
+# The tools that shape a tangle (tools/tangle.py runs the two filters, and
+# exercise_filter.py follows tools/exercises.py's markers): inputs of every
+# build from tangled code, so part of its key.
+TANGLE_TOOLS = ['tools/tangle.py', 'tools/exercise_filter.py', 'tools/fragment_comments.py',
+                'tools/exercises.py']
+# MB of one file that a worker's build may write: the book's workers are
+# about 3 MB, their objects less.
+BUILD_FILE_MB = 64
 CALL_SOURCES = ['tests/calls/core.h', 'tests/calls/calls.h', 'tests/calls/worker.cpp']
 
 
@@ -52,17 +63,51 @@ class BuildError(Exception):
         self.output = output
 
 
+# Bytes of a command's output that run() keeps: its first half and its last
+# (a compiler's first errors, a program's last words). A compile of a
+# student's code may print without end.
+MAX_OUTPUT = 256 << 10
+
+
+class Output:
+    """A pipe's bytes as run() keeps them: the head, and a tail that rolls."""
+    def __init__(self):
+        self.head, self.tail, self.dropped = b'', b'', 0
+
+    def add(self, data):
+        room = MAX_OUTPUT // 2 - len(self.head)
+        self.head += data[:max(room, 0)]
+        self.tail += data[max(room, 0):]
+        excess = len(self.tail) - MAX_OUTPUT // 2
+        if excess > 0:
+            self.dropped += excess
+            self.tail = self.tail[excess:]
+
+    def text(self):
+        cut = '\n[... %d bytes of output left out ...]\n' % self.dropped if self.dropped else ''
+        return (self.head.decode(errors='replace') + cut +
+                self.tail.decode(errors='replace'))
+
+
 def run(cmd, cwd=None, timeout=900):
+    """Runs cmd, its output (stdout and stderr) kept up to MAX_OUTPUT bytes;
+    (exit status, output), or ('timeout', output) after `timeout` seconds,
+    when its whole process group is killed (a compiler's own children too)."""
+    proc = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, start_new_session=True)
+    output = Output()
+    reader = threading.Thread(target=lambda: [output.add(chunk) for chunk in
+                                              iter(lambda: proc.stdout.read1(1 << 16), b'')])
+    reader.start()
     try:
-        proc = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True,
-                              errors='replace', timeout=timeout,
-                              stdin=subprocess.DEVNULL)
-        return proc.returncode, proc.stdout + proc.stderr
-    except subprocess.TimeoutExpired as e:
-        out = e.stdout or b''
-        if isinstance(out, bytes):
-            out = out.decode(errors='replace')
-        return 'timeout', out + '\n(the build took longer than %d s)' % timeout
+        code = proc.wait(timeout=max(timeout, 0))
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+        code = 'timeout'
+    # A process that left the group may hold the pipe open: not waited for.
+    reader.join(10)
+    return code, output.text()
 
 
 def tangle(root, chapters_dir, chapters, out, line_directives=False):
@@ -78,8 +123,10 @@ def tangle(root, chapters_dir, chapters, out, line_directives=False):
 
 
 def tree_hash(directory, extra=''):
-    """A hash of a tangled tree's files, #line directives left out (prose
-    edits move them without changing the code)."""
+    """A hash of a tangled tree's files, every byte of them: the tree is
+    tangled without #line directives, so a line that starts with `#line` is
+    the student's, and the compiler obeys it (two programs must never share
+    a key)."""
     h = hashlib.sha256(extra.encode())
     for top, dirs, files in os.walk(directory):
         dirs.sort()
@@ -87,10 +134,9 @@ def tree_hash(directory, extra=''):
             path = os.path.join(top, name)
             h.update(os.path.relpath(path, directory).encode() + b'\0')
             with open(path, 'rb') as f:
-                for line in f:
-                    if not line.startswith(b'#line '):
-                        h.update(line)
-            h.update(b'\0')
+                data = f.read()
+            # The length first: no file's end can pass for the next name.
+            h.update(b'%d\0' % len(data) + data)
     return h.hexdigest()[:32]
 
 
@@ -98,9 +144,9 @@ def files_hash(root, patterns):
     h = hashlib.sha256()
     for pattern in patterns:
         for path in sorted(glob.glob(os.path.join(root, pattern))):
-            h.update(os.path.relpath(path, root).encode() + b'\0')
             with open(path, 'rb') as f:
-                h.update(f.read())
+                data = f.read()
+            h.update(os.path.relpath(path, root).encode() + b'\0%d\0' % len(data) + data)
     return h.hexdigest()
 
 
@@ -124,14 +170,15 @@ class Locked:
         self.file.close()
 
 
-def compile_all(jobs, commands):
-    """Runs (argv, cwd) compile commands, `jobs` at a time; returns the
-    output of the first that failed, or None."""
+def compile_all(jobs, commands, timeout=lambda: 900):
+    """Runs (argv, cwd) compile commands, `jobs` at a time, each within
+    timeout() seconds (what is left of a build's time when it starts);
+    returns (status, output) of the first that failed, or None."""
     with concurrent.futures.ThreadPoolExecutor(max(1, jobs)) as pool:
-        results = list(pool.map(lambda c: run(c[0], cwd=c[1]), commands))
+        results = list(pool.map(lambda c: run(c[0], cwd=c[1], timeout=timeout()), commands))
     for code, output in results:
         if code != 0:
-            return output
+            return code, output
     return None
 
 
@@ -143,15 +190,19 @@ def reference_chapters(root, number):
 # ---------------------------------------------------------------------------
 # The judge
 
+def judge_key(root, number):
+    """The judge's cache key: a hash of every input of its build."""
+    chapters = reference_chapters(root, number)
+    tests = ['tests/ch%s/*' % number, 'tests/hidden/ch%s/*' % number, 'tests/calls/*']
+    return hashlib.sha256((files_hash(root, [os.path.relpath(p, root) for p in chapters]) +
+                           files_hash(root, tests + TANGLE_TOOLS) +
+                           ' '.join(JUDGE_CXXFLAGS)).encode()).hexdigest()[:32]
+
+
 def judge(cache, root, number, jobs=2):
     """The judge of chapter `number`, built from the book's code (cached)."""
     chapters = reference_chapters(root, number)
-    tests = ['tests/ch%s/*' % number, 'tests/hidden/ch%s/*' % number, 'tests/calls/*']
-    key = hashlib.sha256((files_hash(root, [os.path.relpath(p, root) for p in chapters]) +
-                          files_hash(root, tests + ['tools/tangle.py',
-                                                    'tools/exercise_filter.py']) +
-                          ' '.join(JUDGE_CXXFLAGS)).encode()).hexdigest()[:32]
-    entry = os.path.join(cache, 'judge-%s-%s' % (number, key))
+    entry = os.path.join(cache, 'judge-%s-%s' % (number, judge_key(root, number)))
     binary = os.path.join(entry, 'judge')
     os.makedirs(cache, exist_ok=True)
     with Locked(entry):
@@ -177,12 +228,12 @@ def judge(cache, root, number, jobs=2):
                                   'tests', '-c', source, '-o', obj], root))
             failed = compile_all(jobs, commands)
             if failed is None:
-                code, failed = run(['g++', '-o', os.path.join(work, 'judge')] + objects +
+                code, output = run(['g++', '-o', os.path.join(work, 'judge')] + objects +
                                    ['-lgtest', '-pthread'])
-                failed = failed if code != 0 else None
+                failed = (code, output) if code != 0 else None
             if failed is not None:
                 raise BuildError('the judge of chapter %s (the book\'s own code and tests) '
-                                 'does not build:\n%s' % (number, failed[-4000:]))
+                                 'does not build:\n%s' % (number, failed[1][-4000:]))
             # The judge holds the hidden tests: for the grader's eyes only.
             os.makedirs(entry, mode=0o700, exist_ok=True)
             os.chmod(entry, 0o700)
@@ -198,8 +249,13 @@ def judge(cache, root, number, jobs=2):
 class WorkerBuild:
     """Builds workers of chapter `number` from directories of chapters."""
 
-    def __init__(self, cache, root, number, cxxflags=None, jobs=2):
+    def __init__(self, cache, root, number, cxxflags=None, jobs=2, time_limit=900,
+                 memory_mb=0):
         self.cache, self.root, self.number = cache, root, number
+        # The limits of one worker's build (the grader's --compile-time-limit
+        # and --memory-limit): seconds in all, MB per compiler process.
+        self.time_limit, self.memory_mb = time_limit, memory_mb
+        self.deadline = None     # when the build of the student's code must end
         self.cxxflags = cxxflags or WORKER_CXXFLAGS
         self.jobs = jobs
         self.ccache = os.path.join(cache, 'ccache') if shutil.which('ccache') else None
@@ -221,18 +277,42 @@ class WorkerBuild:
             with Locked(entry):
                 if os.path.isfile(binary):
                     return binary
+                # Found first: the book's build is not timed against the student.
+                self.needed()
+                self.deadline = time.monotonic() + self.time_limit
                 failure = self._compile(work)
+                if failure is not None and self._limit_hit(*failure):
+                    raise BuildError(self._limit_hit(*failure))
                 if failure is not None:
                     # Again with #line directives, for errors at the chapters' lines.
                     tangle(self.root, chapters_dir, ['chapters/' + c for c in chapters],
                            src, line_directives=True)
-                    failure = self._compile(work) or failure
-                    raise BuildError(failure)
+                    again = self._compile(work)
+                    raise BuildError((failure if again is None or self._limit_hit(*again)
+                                      else again)[1])
                 os.makedirs(entry, exist_ok=True)
                 os.replace(os.path.join(work, 'worker'), binary)
                 return binary
         finally:
+            self.deadline = None
             shutil.rmtree(work, ignore_errors=True)
+
+    def _time_left(self):
+        return 900 if self.deadline is None else self.deadline - time.monotonic()
+
+    def _limit_hit(self, code, output):
+        """What a failed step of the build says of the limit it went over
+        (a compiler over a limit dies with words of its own), or None."""
+        if code == 'timeout':
+            return ('the compile took longer than %d s (the time limit of a build)'
+                    % self.time_limit)
+        if self.memory_mb and re.search(r'out of memory|memory exhausted|Cannot allocate '
+                                        r'memory|std::bad_alloc', output):
+            return ('the compile ran out of memory (a compiler process may use %d MB)'
+                    % self.memory_mb)
+        if re.search(r'File size limit exceeded|signal 25\b|File too large', output):
+            return 'the compile wrote a file larger than %d MB' % BUILD_FILE_MB
+        return None
 
     def _prepare(self, work):
         for rel in self.call_files:
@@ -242,19 +322,21 @@ class WorkerBuild:
         os.makedirs(os.path.join(work, 'obj'), exist_ok=True)
 
     def _command(self, work, argv):
+        limits = sandbox.compile_limits(self.memory_mb, BUILD_FILE_MB)
         wrapped = sandbox.compile_command(argv, work, self.ccache)
         if wrapped is None:
-            return (argv, work)
+            return (limits + argv, work)
         if self.ccache:
             os.makedirs(self.ccache, exist_ok=True)
-        return (wrapped, None)
+        return (limits + wrapped, None)
 
     def _cxx(self):
         return (['ccache'] if self.ccache else []) + ['g++'] + self.cxxflags + [
             '-Isrc', '-Itests']
 
     def _compile(self, work, sources=None):
-        """Compiles the worker in `work` (src/ tangled); None, or the errors."""
+        """Compiles the worker in `work` (src/ tangled); None, or the
+        (status, output) of the step that failed."""
         self._prepare(work)
         all_sources = library_sources(os.path.join(work, 'src'))
         needed = self.needed() if sources is None else sources
@@ -265,22 +347,23 @@ class WorkerBuild:
         for s in todo:
             commands.append(self._command(work, self._cxx() + [
                 '-c', 'src/' + s, '-o', 'obj/' + s.replace('/', '_') + '.o']))
-        failed = compile_all(self.jobs, commands)
+        failed = compile_all(self.jobs, commands, self._time_left)
         if failed is not None:
             return failed
         for attempt in (0, 1):
             objects = ['obj/worker.o'] + ['obj/' + s.replace('/', '_') + '.o' for s in todo]
             argv = ['g++', '-static', '-o', 'worker'] + objects + ['-pthread']
-            code, output = run(*self._command(work, argv))
+            code, output = run(*self._command(work, argv), timeout=self._time_left())
             if code == 0:
                 return None
             rest = [s for s in all_sources if s not in todo]
             if attempt or not rest or 'undefined reference' not in output:
-                return output
+                return code, output
             # The student's code calls into more of the library than the
             # book's does: compile the rest too.
             failed = compile_all(self.jobs, [self._command(work, self._cxx() + [
-                '-c', 'src/' + s, '-o', 'obj/' + s.replace('/', '_') + '.o']) for s in rest])
+                '-c', 'src/' + s, '-o', 'obj/' + s.replace('/', '_') + '.o']) for s in rest],
+                self._time_left)
             if failed is not None:
                 return failed
             todo = all_sources
@@ -293,7 +376,8 @@ class WorkerBuild:
             return self._needed
         key = hashlib.sha256((files_hash(self.root, [
             os.path.relpath(p, self.root) for p in reference_chapters(self.root, self.number)]) +
-            files_hash(self.root, self.call_files) + ' '.join(self.cxxflags)).encode()
+            files_hash(self.root, self.call_files + TANGLE_TOOLS) +
+            ' '.join(self.cxxflags)).encode()
         ).hexdigest()[:32]
         record = os.path.join(self.cache, 'needed-%s-%s' % (self.number, key))
         with Locked(record):

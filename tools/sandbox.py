@@ -178,6 +178,16 @@ def worker_command(binary, memory_mb=1024, cpu_seconds=120, processes=16, file_m
     return limits + [binary]
 
 
+def compile_limits(memory_mb, file_mb):
+    """prlimit's arguments for a compile of a student's code: the compiler
+    may be made to use memory and write files without end (templates, a
+    huge constant array); its time the caller limits."""
+    args = ['prlimit', '--core=0', '--fsize=%d' % (file_mb << 20)]
+    if memory_mb:
+        args.append('--as=%d' % (memory_mb << 20))
+    return args + ['--']
+
+
 def compile_command(argv, build_dir, cache_dir=None):
     """The command line that runs the compiler `argv` on the files of
     `build_dir`, which it sees (read-write) as /build, its working directory.

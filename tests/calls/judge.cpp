@@ -60,7 +60,19 @@ namespace {
 // standard exceptions do not swallow it.
 struct Abort {};
 
-const uint32_t kMaxFrame = 256u << 20;   // bytes of one reply
+// What the judge accepts from a worker, which runs the student's code and
+// may send anything. Measured on the book's code (chapters 3 and 6, hidden
+// tests too): the largest reply is 0.93 MB (a BVH's nodes, chapter 6), the
+// replies of one exercise's tests 11 MB in all. Code that throws in every
+// call answers more: the student edition's stubs (a message of about 150
+// bytes) passed 32 MB in one test of chapter 5 (100000 cases), so a test may
+// have 100000 calls throw 2.5 KB each. A frame larger than
+// kMaxFrame, or a test whose replies pass kMaxTestReplies in all, is a
+// failure of the call it answers, not a larger judge. What the student's
+// code threw is shown cut to kMaxMessage bytes.
+const uint32_t kMaxFrame = 4u << 20;
+const size_t kMaxTestReplies = 256u << 20;
+const size_t kMaxMessage = 4096;
 const int kMaxStarts = 40;               // worker processes per judge run
 
 struct Config {
@@ -284,6 +296,7 @@ class Worker {
 
     // Ends the test: the worker drops the objects it kept.
     void Reset() {
+        received = 0;
         if (!Running()) return;
         std::vector<std::pair<uint64_t, std::string>> reset{{0, ""}};
         Exchange(reset);
@@ -326,6 +339,12 @@ class Worker {
                     }
                     inbox.erase(0, taken);
                     taken = 0;
+                    if (!overLimit.empty()) {
+                        Stop();
+                        replies->push_back(StatusReply(Status::BadReply, overLimit));
+                        overLimit.clear();
+                        return;
+                    }
                     if (failed) {
                         failed = false;
                         Stop();
@@ -353,7 +372,17 @@ class Worker {
         if (replies->size() >= requests.size() || have < 4) return false;
         uint32_t n;
         std::memcpy(&n, inbox.data() + taken, 4);
-        if (n < 8 || n > kMaxFrame) {
+        if (n > kMaxFrame) {
+            overLimit = "the answer was larger than " + std::to_string(kMaxFrame >> 20) +
+                        " MB (what the code returned or threw)";
+            return false;
+        }
+        if (received + n > kMaxTestReplies) {
+            overLimit = "the answers of this test came to more than " +
+                        std::to_string(kMaxTestReplies >> 20) + " MB in all";
+            return false;
+        }
+        if (n < 8) {
             failed = true;
             return false;
         }
@@ -365,6 +394,7 @@ class Worker {
             return false;
         }
         replies->push_back(inbox.substr(taken + 12, n - 8));
+        received += n;
         taken += 4 + size_t(n);
         *last = Now();
         return true;
@@ -380,6 +410,8 @@ class Worker {
     int to = -1, from = -1;
     int starts = 0;
     bool failed = false;
+    std::string overLimit;   // why the worker's last frame was refused
+    size_t received = 0;     // bytes of replies in this test
     std::string inbox;    // bytes read from the worker
     size_t taken = 0;     // of which replies already taken
 };
@@ -480,6 +512,9 @@ void Unpack(const std::string &reply, const char *name, Reader *r) {
         std::string what;
         Get(*r, kind);
         Get(*r, what);
+        if (what.size() > kMaxMessage)
+            what = what.substr(0, kMaxMessage) + " [... " +
+                   std::to_string(what.size() - kMaxMessage) + " more bytes]";
         switch (Thrown(kind)) {
         case Thrown::InvalidArgument: throw std::invalid_argument(what);
         case Thrown::OutOfRange: throw std::out_of_range(what);
@@ -572,9 +607,29 @@ bool StartsWith(const std::string &s, const std::string &prefix) {
     return s.compare(0, prefix.size(), prefix) == 0;
 }
 
+// The length of the well-formed UTF-8 sequence at s[i] that encodes a
+// character above U+007F (the shortest form, no surrogate, at most U+10FFFF),
+// or 0 if none starts there.
+size_t Utf8Sequence(const std::string &s, size_t i) {
+    unsigned char c = s[i];
+    size_t n = c >= 0xf0 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 ? 2 : 0;
+    if (n == 0 || c > 0xf4 || i + n > s.size()) return 0;
+    for (size_t k = 1; k < n; ++k)
+        if ((static_cast<unsigned char>(s[i + k]) & 0xc0) != 0x80) return 0;
+    unsigned char d = s[i + 1];
+    if ((c == 0xe0 && d < 0xa0) || (c == 0xed && d >= 0xa0) ||
+        (c == 0xf0 && d < 0x90) || (c == 0xf4 && d >= 0x90))
+        return 0;
+    return n;
+}
+
+// A JSON string of any bytes: what a student's code threw may be anything,
+// and one line that is not JSON would lose its test's verdict, so a byte
+// that is not part of well-formed UTF-8 becomes U+FFFD.
 std::string JsonString(const std::string &s) {
     std::string out = "\"";
-    for (unsigned char c : s) {
+    for (size_t i = 0; i < s.size(); ++i) {
+        unsigned char c = s[i];
         if (c == '"' || c == '\\') {
             out += '\\';
             out += char(c);
@@ -582,11 +637,28 @@ std::string JsonString(const std::string &s) {
             char buf[8];
             std::snprintf(buf, sizeof(buf), "\\u%04x", c);
             out += buf;
-        } else {
+        } else if (c < 0x80) {
             out += char(c);
+        } else if (size_t n = Utf8Sequence(s, i)) {
+            out.append(s, i, n);
+            i += n - 1;
+        } else {
+            out += "\\ufffd";
         }
     }
     return out + "\"";
+}
+
+// The failures of one test that its line keeps, and their length: a check
+// may print a value of the student's code (a long string), and the verdicts
+// and the feedback stay small.
+const int kMaxFailures = 20;
+const size_t kMaxFailureText = 8192;
+
+std::string Cut(const std::string &text) {
+    if (text.size() <= kMaxFailureText) return text;
+    return text.substr(0, kMaxFailureText) + " [... " +
+           std::to_string(text.size() - kMaxFailureText) + " more bytes]";
 }
 
 // Writes a line of JSON per finished test to a file, at once, so that what
@@ -606,16 +678,15 @@ class ResultLines : public ::testing::EmptyTestEventListener {
             << JsonString(std::string(info.test_suite_name()) + "." + info.name())
             << ", \"passed\": " << (r->Passed() ? "true" : "false")
             << ", \"status\": " << JsonString(status) << ", \"failures\": [";
-        bool first = true;
-        for (int i = 0; i < r->total_part_count(); ++i) {
+        int shown = 0;
+        for (int i = 0; i < r->total_part_count() && shown < kMaxFailures; ++i) {
             const ::testing::TestPartResult &part = r->GetTestPartResult(i);
             if (!part.failed()) continue;
             std::string where = part.file_name() ? part.file_name() : "";
             if (!where.empty() && part.line_number() >= 0)
                 where += ":" + std::to_string(part.line_number());
-            out << (first ? "" : ", ")
-                << JsonString((where.empty() ? "" : where + "\n") + part.message());
-            first = false;
+            out << (shown++ ? ", " : "")
+                << JsonString(Cut((where.empty() ? "" : where + "\n") + part.message()));
         }
         out << "]}\n";
         out.flush();

@@ -1,0 +1,232 @@
+"""What a submission can make the grader hold is limited (docs/grading.md):
+a compile of a student's code within --compile-time-limit, the judge's
+memory and the verdicts whatever the student's code throws, and the cache
+keys name every byte of what a build reads.
+
+The grading cases grade chapter 5 with ex-5.10's region changed, in both
+isolation modes: bubblewrap, and the fallback without namespaces (a `bwrap`
+on PATH that fails, as where a container forbids namespaces)."""
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), 'tools'))
+import test_grade as tg  # noqa: E402
+import grade  # noqa: E402
+import grade_build  # noqa: E402
+
+# ex-5.10's region, after the book's solution lines.
+SOLUTION = 'Float invD = invDir[i];\nint isNeg = dirIsNeg[i];'
+HUGE = 128 << 20
+LONG = 1 << 20
+# The message thrown: an invalid UTF-8 byte first, then LONG bytes.
+ODD_PREFIX = '\\xff not UTF-8 '
+ODD_LENGTH = 1 + len(' not UTF-8 ') + LONG
+# Four constant evaluations of about 13 s each at -O0 on a loaded machine.
+SLOW = '\n'.join(
+    ['constexpr auto spin = [](int k) { long s = 0; for (int a = 0; a < 30000; ++a) '
+     'for (int b = 0; b < 30000; ++b) s += a ^ b ^ k; return s; };'] +
+    ['static_assert(spin(%d) != -1, "spin");' % k for k in range(4)])
+COMPILE_LIMIT = 3
+
+
+class CacheKeyTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix='lrt-grade-keys-')
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def write(self, rel, text):
+        path = os.path.join(self.tmp, rel)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, 'w', encoding='utf-8') as f:
+            f.write(text)
+
+    def test_a_line_directive_of_the_student_is_in_the_worker_key(self):
+        self.write('a/lrt/x.cpp', 'int x = __LINE__;\n')
+        self.write('b/lrt/x.cpp', '#line 7\nint x = __LINE__;\n')
+        self.assertNotEqual(grade_build.tree_hash(os.path.join(self.tmp, 'a')),
+                            grade_build.tree_hash(os.path.join(self.tmp, 'b')))
+
+    def test_every_tool_of_the_tangle_is_in_the_judge_key(self):
+        self.write('chapters/05-x.md', 'text\n')
+        self.write('tests/ch05/t.cpp', '\n')
+        for tool in ('tangle.py', 'exercise_filter.py', 'exercises.py',
+                     'fragment_comments.py'):
+            self.write('tools/' + tool, '# %s\n' % tool)
+        for tool in ('tangle.py', 'exercise_filter.py', 'exercises.py',
+                     'fragment_comments.py'):
+            before = grade_build.judge_key(self.tmp, '05')
+            self.write('tools/' + tool, '# %s, changed\n' % tool)
+            self.assertNotEqual(grade_build.judge_key(self.tmp, '05'), before, tool)
+
+    def test_a_line_that_is_not_json_costs_only_its_own_test(self):
+        path = os.path.join(self.tmp, 'results.jsonl')
+        with open(path, 'wb') as f:
+            f.write(b'{"test": "A.a", "passed": true}\n'
+                    b'{"test": "A.b", "failures": ["\xff"]}\n'
+                    b'{"test": "A.c", "passed": false}\n')
+        self.assertEqual(sorted(grade.read_report(path)), ['A.a', 'A.c'])
+
+
+class PeakMemory:
+    """The largest VmHWM (kB) of the processes running `binary` while it
+    lives, polled every 20 ms (the judge keeps what it accepted until its
+    test ends)."""
+    def __init__(self, directory):
+        self.directory, self.peak, self.done = directory, 0, False
+        self.thread = threading.Thread(target=self.poll)
+        self.thread.start()
+
+    def poll(self):
+        while not self.done:
+            for pid in filter(str.isdigit, os.listdir('/proc')):
+                try:
+                    if not os.readlink('/proc/%s/exe' % pid).startswith(self.directory):
+                        continue
+                    with open('/proc/%s/status' % pid) as f:
+                        for line in f:
+                            if line.startswith('VmHWM:'):
+                                self.peak = max(self.peak, int(line.split()[1]))
+                except OSError:
+                    continue
+            time.sleep(0.02)
+
+    def stop(self):
+        self.done = True
+        self.thread.join()
+        return self.peak
+
+
+class LimitsTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        book = tg.book_exercises()
+        owner = {f: e for e, x in book.items() for f in x['fragments']}
+        cls.target = owner[tg.F10]
+        cls.others = {e: x['points'] for e, x in book.items()
+                      if x['chapter'] == '05' and e != cls.target}
+        cls.tmp = tempfile.mkdtemp(prefix='lrt-grade-limits-')
+        cls.cache = os.path.join(cls.tmp, 'cache')
+        text = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
+        for name, code in (
+                # Once per worker process: replies to a whole batch of such
+                # calls would only exhaust the worker's own memory.
+                ('huge', '{ static bool sent = false; if (!sent) { sent = true; '
+                         'throw std::runtime_error(std::string(%d, \'x\')); } }' % HUGE),
+                ('odd', 'throw std::runtime_error(std::string("%s") + std::string(%d, '
+                        '\'y\'));' % (ODD_PREFIX, LONG)),
+                ('slow', SLOW + '\n' + SOLUTION)):
+            chapter = os.path.join(cls.tmp, name, tg.CHAPTER)
+            os.makedirs(os.path.dirname(chapter))
+            with open(chapter, 'w', encoding='utf-8') as f:
+                f.write(tg.replace_region(text, tg.F10, code) if name == 'slow'
+                        else tg.inject(text, tg.F10, code))
+        cls.no_bwrap = os.path.join(cls.tmp, 'no-bwrap')
+        os.makedirs(cls.no_bwrap)
+        with open(os.path.join(cls.no_bwrap, 'bwrap'), 'w') as f:
+            f.write('#!/bin/sh\necho "bwrap: No permissions to create new namespace" >&2\n'
+                    'exit 1\n')
+        os.chmod(os.path.join(cls.no_bwrap, 'bwrap'), 0o755)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def grade(self, name, fallback, *options):
+        """(results.json, the judge's peak kB, seconds) of grading `name`."""
+        mode = 'unprivileged user' if fallback else 'bubblewrap'
+        out = os.path.join(self.tmp, 'out-%s-%s' % (name, mode.split()[0]))
+        env = dict(os.environ)
+        if fallback:
+            env['PATH'] = self.no_bwrap + os.pathsep + env['PATH']
+        memory = PeakMemory(self.cache)
+        start = time.monotonic()
+        try:
+            proc = subprocess.run(
+                [sys.executable, tg.GRADE, '--cache', self.cache, '--out', out,
+                 '--chapters', '05', '--time-limit', str(tg.TIME_LIMIT)] + list(options) +
+                [os.path.join(self.tmp, name)],
+                cwd=tg.ROOT, env=env, capture_output=True, text=True, timeout=900)
+        finally:
+            peak = memory.stop()
+        elapsed = time.monotonic() - start
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        with open(os.path.join(out, 'results.json'), encoding='utf-8') as f:
+            results = json.load(f)
+        self.assertIn(mode, results['output'])
+        self.assertLess(os.path.getsize(os.path.join(out, 'results.json')), 200 << 10)
+        for test in results['tests']:
+            if test['name'].split()[0] != self.target:
+                self.assertEqual(test['status'], 'passed', (test['name'], test['output']))
+        return results, peak, elapsed
+
+    def target_tests(self, results):
+        tests = [t for t in results['tests'] if t['name'].split()[0] == self.target]
+        self.assertTrue(tests)
+        for test in tests:
+            self.assertEqual(test['status'], 'failed', test['name'])
+            self.assertEqual(test['score'], 0)
+        return tests
+
+    def check_huge(self, fallback):
+        # Time to make and send 128 MB on a loaded machine.
+        results, peak, _ = self.grade('huge', fallback, '--time-limit', '20')
+        print('judge peak %d kB' % peak, file=sys.stderr)
+        for test in self.target_tests(results):
+            self.assertIn('the answer was larger than 4 MB', test['output'])
+        # The judge of chapter 5 alone peaks at about 170 MB (its speculative
+        # runs); holding one 128 MB reply would take it past 400 MB.
+        self.assertLess(peak, 300 << 10, 'the judge grew to %d kB' % peak)
+        kept = glob.glob(os.path.join(self.cache, 'verdicts-*.json'))
+        self.assertLess(max(os.path.getsize(p) for p in kept), 100 << 10)
+        self.assertAlmostEqual(results['score'], sum(self.others.values()), places=3)
+
+    def check_odd(self, fallback):
+        results, _, _ = self.grade('odd', fallback)
+        for test in self.target_tests(results):
+            self.assertIn('\ufffd not UTF-8 yyy', test['output'])
+            self.assertNotIn('the judge has no test', test['output'])
+        # What the judge kept of the message: its first 4096 bytes.
+        kept = glob.glob(os.path.join(self.cache, 'verdicts-*.json'))
+        text = ''.join(tg.read(p) for p in kept)
+        self.assertIn('[... %d more bytes]' % (ODD_LENGTH - 4096), text)
+        self.assertAlmostEqual(results['score'], sum(self.others.values()), places=3)
+
+    def check_slow(self, fallback):
+        results, _, elapsed = self.grade('slow', fallback, '--compile-time-limit',
+                                         str(COMPILE_LIMIT))
+        print('graded in %.1f s' % elapsed, file=sys.stderr)
+        for test in self.target_tests(results):
+            self.assertIn('the compile took longer than %d s' % COMPILE_LIMIT,
+                          test['output'])
+        self.assertIn('**Compile error in %s**' % self.target, results['output'])
+        self.assertAlmostEqual(results['score'], sum(self.others.values()), places=3)
+        # The judge and the other exercises' workers are in the cache by now.
+        self.assertLess(elapsed, 60)
+
+    @unittest.skipUnless(os.geteuid() == 0, 'the sandbox drops to its own user only as root')
+    def test_bubblewrap(self):
+        for check in (self.check_huge, self.check_odd, self.check_slow):
+            with self.subTest(check.__name__):
+                check(fallback=False)
+
+    @unittest.skipUnless(os.geteuid() == 0, 'the fallback needs root')
+    def test_fallback_without_namespaces(self):
+        for check in (self.check_huge, self.check_odd, self.check_slow):
+            with self.subTest(check.__name__):
+                check(fallback=True)
+
+
+if __name__ == '__main__':
+    unittest.main()

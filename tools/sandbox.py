@@ -27,10 +27,9 @@ import fcntl
 import functools
 import os
 import shutil
+import signal
 import stat
 import subprocess
-import sys
-import tempfile
 
 # The unprivileged user the sandbox runs as when the grader is root: a uid
 # that no account uses, so that RLIMIT_NPROC counts the sandbox alone.
@@ -66,10 +65,19 @@ def _is_root():
 SANDBOX_UIDS = range(SANDBOX_UID, SANDBOX_UID + 256)
 
 
+# Where the uid locks are: one directory for every grader of the machine, so
+# /run (root's: only a root grader takes uids), never the temporary
+# directory, which TMPDIR or a private /tmp (a grader in a container of its
+# own, such as the autograder's test) makes another. Two graders that saw
+# different directories took the same uid: they shared its process limit,
+# and each, taking the uid, killed the other's workers (end_processes_of).
+UID_LOCKS = '/run/lrt-sandbox-uids'
+
+
 def _uid_lock_dir():
     """A directory only this user can enter, for the uid locks (a worker in
-    the fallback without namespaces shares /tmp and must not hold them)."""
-    path = os.path.join(tempfile.gettempdir(), 'lrt-sandbox-uids-%d' % os.geteuid())
+    the fallback without namespaces must not hold them)."""
+    path = UID_LOCKS
     try:
         os.mkdir(path, 0o700)
     except FileExistsError:
@@ -104,12 +112,27 @@ def end_processes_of(uid):
     nothing: a process its student left, a setsid() daemon in the fallback,
     would still run as the uid that the next grader takes, and could kill
     that grader's workers. kill(-1, ...) from a process of that uid reaches
-    every process of the uid but itself."""
-    subprocess.run(['setpriv', '--reuid=%d' % uid, '--regid=%d' % uid, '--clear-groups',
-                    '--', sys.executable, '-c',
-                    'import os, signal\ntry:\n    os.kill(-1, signal.SIGKILL)\n'
-                    'except ProcessLookupError:\n    pass\n'],
-                   stdin=subprocess.DEVNULL, check=True)
+    every process of the uid but itself: a child that has become the uid,
+    and kills only once it is sure it has (as root, kill(-1) would reach
+    every process of the machine)."""
+    child = os.fork()
+    if child == 0:
+        ended = 1
+        try:
+            os.setgroups([])
+            os.setgid(uid)
+            os.setuid(uid)
+            if os.getuid() == uid and os.geteuid() == uid:
+                try:
+                    os.kill(-1, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass        # no process of the uid
+                ended = 0
+        finally:
+            os._exit(ended)
+    _, status = os.waitpid(child, 0)
+    if status != 0:
+        raise RuntimeError('could not end the processes of uid %d' % uid)
 
 
 def _drop_privileges():

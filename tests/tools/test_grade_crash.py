@@ -21,6 +21,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -184,9 +185,36 @@ class UidLeftoversTest(unittest.TestCase):
         left = subprocess.Popen(['setpriv', '--reuid=%d' % uid, '--regid=%d' % uid,
                                  '--clear-groups', '--', 'sleep', '600'])
         self.addCleanup(left.kill)
+        # Once it runs as the uid (setpriv starts as root).
+        while True:
+            with open('/proc/%d/status' % left.pid) as f:
+                if 'Uid:\t%d\t' % uid in f.read():
+                    break
+            time.sleep(0.01)
         sandbox.end_processes_of(uid)
         self.assertEqual(left.wait(timeout=10), -9)
         sandbox.end_processes_of(uid)    # none left: no error either
+
+    def test_graders_with_other_temporary_directories_take_other_uids(self):
+        # As the autograder's test runs one, in a private /tmp: before, it
+        # took the uid of a grader running beside it, and killed its workers.
+        code = ('import sys, time; sys.path.insert(0, %r); import sandbox; '
+                'print(sandbox.sandbox_uid(), flush=True); time.sleep(3)'
+                % os.path.join(tg.ROOT, 'tools'))
+        graders = []
+        for _ in range(2):
+            env = dict(os.environ, TMPDIR=tempfile.mkdtemp(dir=self.tmp))
+            graders.append(subprocess.Popen([sys.executable, '-c', code], env=env,
+                                            stdout=subprocess.PIPE, text=True))
+        uids = {int(g.stdout.readline()) for g in graders}
+        for g in graders:
+            g.wait()
+            g.stdout.close()
+        self.assertEqual(len(uids), 2, uids)
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix='lrt-uid-test-')
+        self.addCleanup(shutil.rmtree, self.tmp)
 
     def test_a_grader_ends_what_its_uid_left_before_it_uses_it(self):
         ended = []

@@ -63,14 +63,18 @@ struct Abort {};
 // What the judge accepts from a worker, which runs the student's code and
 // may send anything. Measured on the book's code (chapters 3 and 6, hidden
 // tests too): the largest reply is 0.93 MB (a BVH's nodes, chapter 6), the
-// replies of one exercise's tests 11 MB in all. Code that throws in every
-// call answers more: the student edition's stubs (a message of about 150
-// bytes) passed 32 MB in one test of chapter 5 (100000 cases), so a test may
-// have 100000 calls throw 2.5 KB each. A frame larger than
-// kMaxFrame, or a test whose replies pass kMaxTestReplies in all, is a
+// replies of one exercise's tests 11 MB in all. A test makes up to a few
+// million calls, and code that throws in every one answers each with its
+// message: the student edition's stubs (about 150 bytes) passed 256 MB in one
+// test of chapter 5 for some seeds. So only what a reply holds beyond its
+// first kFreeReplyBytes counts towards kMaxTestReplies: honest answers and
+// short messages never reach it, and a worker that pads every answer to
+// inflate the judge is stopped after 256 MB more than that. A frame larger
+// than kMaxFrame, or a test whose counted replies pass kMaxTestReplies, is a
 // failure of the call it answers, not a larger judge. What the student's
 // code threw is shown cut to kMaxMessage bytes.
 const uint32_t kMaxFrame = 4u << 20;
+const size_t kFreeReplyBytes = 256;
 const size_t kMaxTestReplies = 256u << 20;
 const size_t kMaxMessage = 4096;
 const int kMaxStarts = 40;               // worker processes per judge run
@@ -377,7 +381,8 @@ class Worker {
                         " MB (what the code returned or threw)";
             return false;
         }
-        if (received + n > kMaxTestReplies) {
+        size_t counted = n > kFreeReplyBytes ? n - kFreeReplyBytes : 0;
+        if (received + counted > kMaxTestReplies) {
             overLimit = "the answers of this test came to more than " +
                         std::to_string(kMaxTestReplies >> 20) + " MB in all";
             return false;
@@ -394,7 +399,7 @@ class Worker {
             return false;
         }
         replies->push_back(inbox.substr(taken + 12, n - 8));
-        received += n;
+        received += counted;
         taken += 4 + size_t(n);
         *last = Now();
         return true;
@@ -411,7 +416,7 @@ class Worker {
     int starts = 0;
     bool failed = false;
     std::string overLimit;   // why the worker's last frame was refused
-    size_t received = 0;     // bytes of replies in this test
+    size_t received = 0;     // bytes of replies in this test that count
     std::string inbox;    // bytes read from the worker
     size_t taken = 0;     // of which replies already taken
 };

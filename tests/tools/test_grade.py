@@ -161,6 +161,27 @@ def inject(text, fragment, code):
     return '\n'.join(lines)
 
 
+def failing_bwrap(directory):
+    """directory, made to hold a `bwrap` that fails as it does where a
+    container forbids namespaces: first on PATH, it makes the grader fall back
+    to its isolation without namespaces."""
+    os.makedirs(directory)
+    path = os.path.join(directory, 'bwrap')
+    with open(path, 'w') as f:
+        f.write('#!/bin/sh\necho "bwrap: No permissions to create new namespace" >&2\n'
+                'exit 1\n')
+    os.chmod(path, 0o755)
+    return directory
+
+
+def put_chapter(top, submission, text):
+    """Writes text as chapter 5 of the submission directory top/submission."""
+    path = os.path.join(top, submission, CHAPTER)
+    os.makedirs(os.path.dirname(path))
+    with open(path, 'w', encoding='utf-8') as f:
+        f.write(text)
+
+
 def replace_region(text, fragment, code):
     """Replaces the solution lines of <<fragment>> by code."""
     lines = text.split('\n')

@@ -33,6 +33,8 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 GRADE = os.path.join(ROOT, 'tools', 'grade.py')
 sys.path.insert(0, os.path.join(ROOT, 'tools'))
 import grade  # noqa: E402
+sys.path.insert(0, HERE)
+import test_grade as tg  # noqa: E402
 
 # Names that are not one plain path component, or that are the batch's own
 # files: (entry in the submissions directory, is it an archive).
@@ -280,9 +282,7 @@ class HostileBatchTest(unittest.TestCase):
               'team1,Alan Turing,alan@x\n')
         env = dict(os.environ)
         if fallback:
-            fake = os.path.join(tmp, 'fake-bin')
-            write(os.path.join(fake, 'bwrap'), '#!/bin/sh\nexit 1\n')
-            os.chmod(os.path.join(fake, 'bwrap'), 0o755)
+            fake = tg.failing_bwrap(os.path.join(tmp, 'fake-bin'))
             env['PATH'] = fake + os.pathsep + env['PATH']
         mode = subprocess.run([sys.executable, '-c', 'import sandbox; print(sandbox.isolation())'],
                               cwd=os.path.join(ROOT, 'tools'), env=env, capture_output=True,

@@ -94,17 +94,8 @@ class CrashInOneExerciseTest(unittest.TestCase):
         cls.tmp = tempfile.mkdtemp(prefix='lrt-grade-crash-')
         book_chapter = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
         for name, code in (('exits', '__builtin_exit(0);'), ('daemon', START_DAEMON)):
-            chapter = os.path.join(cls.tmp, name, tg.CHAPTER)
-            os.makedirs(os.path.dirname(chapter))
-            with open(chapter, 'w', encoding='utf-8') as f:
-                f.write(tg.inject(book_chapter, tg.F9, code))
-        # A failing bwrap, for the fallback.
-        cls.no_bwrap = os.path.join(cls.tmp, 'no-bwrap')
-        os.makedirs(cls.no_bwrap)
-        with open(os.path.join(cls.no_bwrap, 'bwrap'), 'w') as f:
-            f.write('#!/bin/sh\necho "bwrap: No permissions to create new namespace" >&2\n'
-                    'exit 1\n')
-        os.chmod(os.path.join(cls.no_bwrap, 'bwrap'), 0o755)
+            tg.put_chapter(cls.tmp, name, tg.inject(book_chapter, tg.F9, code))
+        cls.no_bwrap = tg.failing_bwrap(os.path.join(cls.tmp, 'no-bwrap'))
 
     @classmethod
     def tearDownClass(cls):

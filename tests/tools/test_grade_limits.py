@@ -127,17 +127,9 @@ class LimitsTest(unittest.TestCase):
                 ('odd', 'throw std::runtime_error(std::string("%s") + std::string(%d, '
                         '\'y\'));' % (ODD_PREFIX, LONG)),
                 ('slow', SLOW + '\n' + SOLUTION)):
-            chapter = os.path.join(cls.tmp, name, tg.CHAPTER)
-            os.makedirs(os.path.dirname(chapter))
-            with open(chapter, 'w', encoding='utf-8') as f:
-                f.write(tg.replace_region(text, tg.F10, code) if name == 'slow'
-                        else tg.inject(text, tg.F10, code))
-        cls.no_bwrap = os.path.join(cls.tmp, 'no-bwrap')
-        os.makedirs(cls.no_bwrap)
-        with open(os.path.join(cls.no_bwrap, 'bwrap'), 'w') as f:
-            f.write('#!/bin/sh\necho "bwrap: No permissions to create new namespace" >&2\n'
-                    'exit 1\n')
-        os.chmod(os.path.join(cls.no_bwrap, 'bwrap'), 0o755)
+            tg.put_chapter(cls.tmp, name, tg.replace_region(text, tg.F10, code)
+                           if name == 'slow' else tg.inject(text, tg.F10, code))
+        cls.no_bwrap = tg.failing_bwrap(os.path.join(cls.tmp, 'no-bwrap'))
 
     @classmethod
     def tearDownClass(cls):

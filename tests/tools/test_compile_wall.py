@@ -90,7 +90,7 @@ class ScanTest(unittest.TestCase):
                      '/* multi-line\n   comment with # and asm */ int a;',
                      'std::vector<::lrt::Float> v; auto f = [&](int i) { return v[i]; };',
                      'int m[2][2] = {{1, 2}, {3, 4}}; (void)m[0][v[1]];',
-                     'x <<= 2; y = a << b; z = c >> 1;'):
+                     'x <<= 2; y = a << b;', 'z = c >> 1;'):
             self.assertAccepted(code)
 
     def test_the_book_passes_its_own_check(self):

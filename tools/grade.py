@@ -49,8 +49,11 @@ student and exercise) and OUT/gradebook.csv (a row per student, a column per
 exercise and the total; the student from a submission directory's
 submission_metadata.json, Gradescope's, else the submission's name).
 
-The student's code runs with the grader's privileges: rlimits and a temporary
-working directory, no sandbox. Run it in a container (Gradescope's is one).
+The student's code is compiled and run behind a wall (docs/grading.md, "The
+trust boundary"): what a region may hold (tools/compile_wall.py), compiles
+and workers in a sandbox or as an unprivileged user (tools/sandbox.py), and
+every verdict decided by the judge, which holds the tests and runs none of
+the student's code.
 """
 import argparse
 import concurrent.futures

@@ -12,8 +12,9 @@ every file of the build, so the student's text must not be able to:
 - capture the text around it: a string literal or a comment opened in the
   student's lines that ends in the book's (a raw string `R"(` would hold the
   next exercise's solution), a macro that stringizes the book's code, a
-  noweb use `<<Other fragment>>` that the tangle replaces by another
-  fragment's text (inside a string, too: noweb knows no C++);
+  noweb use `<<Other fragment>>` inside a string, which the tangle replaces
+  by that fragment's text there (noweb knows no C++; a use outside literals
+  only compiles the book's code in one more place);
 - change how the rest is read: a line splice (`\\` at a line's end), a
   trigraph, the `<:` and `%:` digraphs, `_Pragma`.
 
@@ -21,7 +22,8 @@ check() compares the chapter as it will be compiled with the book's chapter,
 chunk by chunk: every chunk must hold exactly the book's sequence of these
 constructs (the book's own `#include` lines stay allowed; a student may add
 none, change none and remove none), must end outside any comment or literal,
-and no comment or literal may hold a region's marker line or a noweb use.
+and no comment or literal may run over a region's marker line or hold a
+noweb use.
 The student's solution regions therefore hold plain C++ statements and
 declarations only, which is all an exercise asks for.
 """
@@ -60,8 +62,6 @@ def scan(lines):
             result.items.append((n, 'trigraph', m.group(0)))
         if SPLICE.search(line):
             result.items.append((n, 'line splice', line.strip()))
-        for m in USE.finditer(line):
-            result.items.append((n, 'fragment use', '<<%s>>' % m.group(1)))
     text = '\n'.join(lines)
     starts = [0]
     for line in lines:

@@ -1018,8 +1018,8 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
                 report.notes += ['', '**%s is not compiled** (its tests score 0): a solution '
                                  'region holds C++ statements and declarations only; no '
                                  'preprocessing directive, `asm`, attribute, `_Pragma`, '
-                                 'fragment use, line splice, trigraph or digraph, and no '
-                                 'comment or literal left open:' % exercise.id, '```',
+                                 'line splice, trigraph or digraph, and no comment or '
+                                 'literal left open or holding a fragment use:' % exercise.id, '```',
                                  fence_safe('\n'.join(refused)), '```']
                 report.write()
                 continue

@@ -77,8 +77,10 @@ class ScanTest(unittest.TestCase):
         self.assertRefused('/* open')
         self.assertRefused('const char *s = "open;')
         self.assertRefused("char c = 'x;")
-        self.assertRefused('<<Other fragment>>', 'fragment use')
-        self.assertRefused('auto s = "<<Other fragment>>";')
+        self.assertRefused('auto s = "<<Other fragment>>";', 'fragment use inside a literal')
+        self.assertRefused('auto s = R"(\n<<Other fragment>>\n)";',
+                           'fragment use inside a raw string')
+        self.assertRefused('/* <<Other fragment>> */', 'fragment use inside a comment')
 
     def test_plain_cpp_is_accepted(self):
         for code in ('const char *s = "# include <x> asm __attribute__ ??";',
@@ -90,7 +92,9 @@ class ScanTest(unittest.TestCase):
                      '/* multi-line\n   comment with # and asm */ int a;',
                      'std::vector<::lrt::Float> v; auto f = [&](int i) { return v[i]; };',
                      'int m[2][2] = {{1, 2}, {3, 4}}; (void)m[0][v[1]];',
-                     'x <<= 2; y = a << b;', 'z = c >> 1;'):
+                     'x <<= 2; y = a << b;', 'z = c >> 1;',
+                     # a use compiles the book's code in one more place
+                     '<<Other fragment>>'):
             self.assertAccepted(code)
 
     def test_the_book_passes_its_own_check(self):

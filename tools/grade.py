@@ -49,8 +49,11 @@ student and exercise) and OUT/gradebook.csv (a row per student, a column per
 exercise and the total; the student from a submission directory's
 submission_metadata.json, Gradescope's, else the submission's name).
 
-The student's code runs with the grader's privileges: rlimits and a temporary
-working directory, no sandbox. Run it in a container (Gradescope's is one).
+The student's code is compiled and run behind a wall (docs/grading.md, "The
+trust boundary"): what a region may hold (tools/compile_wall.py), compiles
+and workers in a sandbox or as an unprivileged user (tools/sandbox.py), and
+every verdict decided by the judge, which holds the tests and runs none of
+the student's code.
 """
 import argparse
 import concurrent.futures
@@ -76,6 +79,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import exercises  # noqa: E402
+import compile_wall  # noqa: E402
 import course  # noqa: E402
 import grade_build  # noqa: E402
 import sandbox  # noqa: E402
@@ -433,15 +437,33 @@ def exercise_text(reference, student, plan, exercise, student_name, allow):
 # ---------------------------------------------------------------------------
 # Building and judging
 
+def region_lines(regions):
+    """The chapter's line numbers of the regions, markers and stubs included."""
+    return {n for r in regions
+            for n in range(r.line(r.begin), r.line(r.stub_end if r.stub_end is not None
+                                                   else r.end) + 1)}
+
+
+# A diagnostic at a line of the book's solution of another exercise (the
+# student's code can cause one there: a name it declares that the book's code
+# then uses) is shown as this, without its words, which may quote that code.
+HIDDEN_DIAGNOSTIC = ('error in the book\'s code of another exercise, which is not shown '
+                     '(caused by your code: check the names you declare)')
+LOCATION = re.compile(r'^(.*?):(\d+):(?:(\d+):)? ')
+
+
 def compiler_errors(output, rename):
-    """The first error lines of a build, with paths rewritten by rename;
-    each error once (a header's error repeats in every file that includes it)."""
+    """The first error lines of a build, with paths rewritten by rename
+    (None: a line whose diagnostics are not shown); each error once (a
+    header's error repeats in every file that includes it)."""
     found = []
     lines = output.splitlines()
     for i, line in enumerate(lines):
         m = re.match(r'^(.*?):(\d+):(?:(\d+):)? (fatal error|error): (.*)$', line)
         if m:
-            text = rename(m.group(1), int(m.group(2)), m.group(3)) + ': error: ' + m.group(5)
+            where = rename(m.group(1), int(m.group(2)), m.group(3))
+            text = (where + ': error: ' + m.group(5) if where is not None
+                    else HIDDEN_DIAGNOSTIC)
         elif 'undefined reference to' in line:
             text = 'link error: ' + line.split(': ', 1)[-1]
         elif line.startswith('tangle: '):
@@ -455,6 +477,21 @@ def compiler_errors(output, rename):
         if len(found) >= FIRST_ERRORS:
             break
     return found
+
+
+def shown_output(lines, rename):
+    """A build's last lines, where no error line was found, as the student
+    may see them: a line at a location whose diagnostics are not shown
+    becomes HIDDEN_DIAGNOSTIC. The compiler prints no source lines
+    (-fdiagnostics-plain-output), so only a diagnostic's own words are left."""
+    shown = []
+    for line in lines:
+        m = LOCATION.match(line)
+        if m and rename(m.group(1), int(m.group(2)), m.group(3)) is None:
+            line = HIDDEN_DIAGNOSTIC
+        if line not in shown:
+            shown.append(line)
+    return shown
 
 
 def signal_name(number):
@@ -927,6 +964,11 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
                                           time_limit=args.compile_time_limit,
                                           memory_mb=args.memory_limit)
         earlier = [p for p in ref_paths if exercises.chapter_number(p) < number]
+        # What a diagnostic may not quote: the book's solutions, in the
+        # earlier chapters (every exercise's) and in this one (every other
+        # exercise's; below).
+        book_solution_lines = {c.path: region_lines(c.regions) for c in book.chapters
+                               if c.path in earlier}
         for exercise in chapter.exercises:
             mine = [r for r in results if r.exercise == exercise.id]
             if not mine:    # not graded in this assignment
@@ -945,21 +987,47 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
                 f.write(text)
             files = [os.path.basename(p) for p in earlier + [chapter.path]]
 
-            def rename(path, line, col, line_map=line_map):
+            composed = parse_chapter(os.path.join(tree, chapter.path))[0]
+            hidden_lines = dict(book_solution_lines)
+            hidden_lines[chapter.path] = region_lines(
+                r for r in composed.regions if r.chunk.name not in exercise.fragments)
+
+            def rename(path, line, col, line_map=line_map, hidden_lines=hidden_lines):
                 col = ':' + col if col else ''
+                m = re.search(r'(chapters/[^/]*)$', path)
+                if m and line in hidden_lines.get(m.group(1), ()):
+                    return None
                 if path.endswith(chapter.path) and 1 <= line <= len(line_map):
                     f, n = line_map[line - 1]
                     return '%s:%d%s' % (f, n, col)
                 m = re.search(r'(chapters/.*|tests/.*|lrt/.*)$', path)
+                if m and m.group(1).startswith('lrt/'):
+                    # The tangle without #line directives: which exercise's
+                    # code a line is cannot be told, so none is shown.
+                    return None
                 if m and m.group(1).startswith('chapters/'):
                     return '%s:%d%s (the book\'s text)' % (m.group(1), line, col)
                 return '%s:%d%s' % (m.group(1) if m else os.path.basename(path), line, col)
 
+            refused = compile_wall.check(chapter, composed,
+                                         lambda n: '%s:%d' % line_map[n - 1])
+            if refused:
+                for r in mine:
+                    r.status = 'COMPILE-ERROR'
+                    r.message = '%s is not compiled: %s' % (exercise.id, '\n'.join(refused))
+                report.notes += ['', '**%s is not compiled** (its tests score 0): a solution '
+                                 'region holds C++ statements and declarations only; no '
+                                 'preprocessing directive, `asm`, attribute, `_Pragma`, '
+                                 'line splice, trigraph or digraph, and no comment or '
+                                 'literal left open or holding a fragment use:' % exercise.id, '```',
+                                 fence_safe('\n'.join(refused)), '```']
+                report.write()
+                continue
             try:
                 worker = builder.build(os.path.join(tree, 'chapters'), files, exercise.id)
             except grade_build.BuildError as e:
                 errors = compiler_errors(e.output, rename) or \
-                    e.output.strip().splitlines()[-10:]
+                    shown_output(e.output.strip().splitlines()[-10:], rename)
                 for r in mine:
                     r.status = 'COMPILE-ERROR'
                     r.message = '%s does not compile: %s' % (exercise.id, '\n'.join(errors))

@@ -258,7 +258,8 @@ class WorkerBuild:
         self.deadline = None     # when the build of the student's code must end
         self.cxxflags = cxxflags or WORKER_CXXFLAGS
         self.jobs = jobs
-        self.ccache = os.path.join(cache, 'ccache') if shutil.which('ccache') else None
+        self.ccache = (os.path.join(cache, 'ccache') if shutil.which('ccache') and
+                       sandbox.compiles_share_a_cache() else None)
         self.calls_header = 'ch%s/exercise_calls.h' % number
         self.call_files = CALL_SOURCES + ['tests/' + self.calls_header]
         self._needed = None      # the set needed() found, once it has
@@ -266,7 +267,7 @@ class WorkerBuild:
     def build(self, chapters_dir, chapters, label):
         """The worker for the chapters (file names in chapters_dir), or a
         BuildError whose output names the chapters' lines."""
-        work = tempfile.mkdtemp(prefix='worker-', dir=self.cache)
+        work = sandbox.compile_dir('worker-', self.cache)
         try:
             src = os.path.join(work, 'src')
             tangle(self.root, chapters_dir, ['chapters/' + c for c in chapters], src)
@@ -291,7 +292,11 @@ class WorkerBuild:
                     raise BuildError((failure if again is None or self._limit_hit(*again)
                                       else again)[1])
                 os.makedirs(entry, exist_ok=True)
-                os.replace(os.path.join(work, 'worker'), binary)
+                # Copied, not moved: work may be on another file system
+                # (sandbox.compile_dir), and the entry must be the grader's.
+                shutil.copyfile(os.path.join(work, 'worker'), binary + '.part')
+                os.chmod(binary + '.part', 0o755)
+                os.replace(binary + '.part', binary)
                 return binary
         finally:
             self.deadline = None
@@ -320,19 +325,21 @@ class WorkerBuild:
             os.makedirs(os.path.dirname(target), exist_ok=True)
             shutil.copy(os.path.join(self.root, rel), target)
         os.makedirs(os.path.join(work, 'obj'), exist_ok=True)
+        sandbox.hand_over(work)
 
     def _command(self, work, argv):
         limits = sandbox.compile_limits(self.memory_mb, BUILD_FILE_MB)
-        wrapped = sandbox.compile_command(argv, work, self.ccache)
-        if wrapped is None:
-            return (limits + argv, work)
         if self.ccache:
             os.makedirs(self.ccache, exist_ok=True)
-        return (limits + wrapped, None)
+        wrapped, cwd = sandbox.compile_command(argv, work, self.ccache)
+        return (limits + wrapped, cwd)
 
     def _cxx(self):
+        # Diagnostics without the source lines they point at: a student's
+        # code can cause errors in the book's code of other exercises, whose
+        # lines the grader must not show (tools/grade.py, HIDDEN_DIAGNOSTIC).
         return (['ccache'] if self.ccache else []) + ['g++'] + self.cxxflags + [
-            '-Isrc', '-Itests']
+            '-fdiagnostics-plain-output', '-Isrc', '-Itests']
 
     def _compile(self, work, sources=None):
         """Compiles the worker in `work` (src/ tangled); None, or the
@@ -385,7 +392,7 @@ class WorkerBuild:
                 with open(record) as f:
                     self._needed = set(f.read().split())
                 return self._needed
-            work = tempfile.mkdtemp(prefix='needed-', dir=self.cache)
+            work = sandbox.compile_dir('needed-', self.cache)
             try:
                 src = os.path.join(work, 'src')
                 tangle(self.root, os.path.join(self.root, 'chapters'),

@@ -30,6 +30,7 @@ import shutil
 import signal
 import stat
 import subprocess
+import tempfile
 
 # The unprivileged user the sandbox runs as when the grader is root: a uid
 # that no account uses, so that RLIMIT_NPROC counts the sandbox alone.
@@ -212,12 +213,19 @@ def compile_limits(memory_mb, file_mb):
 
 
 def compile_command(argv, build_dir, cache_dir=None):
-    """The command line that runs the compiler `argv` on the files of
-    `build_dir`, which it sees (read-write) as /build, its working directory.
-    The compiler reads nothing else but the system's headers and libraries:
-    a student's #include of a grader's file finds nothing."""
-    if isolation() != 'bubblewrap':
-        return None     # the caller compiles in build_dir without a sandbox
+    """(command line, working directory) that run the compiler `argv` on the
+    files of `build_dir`. With bubblewrap, the compiler sees only /usr and
+    build_dir (read-write, as /build, its working directory): a student's
+    #include of a grader's file finds nothing. Without namespaces, it runs in
+    build_dir as the sandbox's unprivileged user (build_dir must be that
+    user's: compile_dir()), never as root. What a student's code may hold
+    keeps the compiler from naming any other file in either case
+    (tools/compile_wall.py)."""
+    kind = isolation()
+    if kind == 'unprivileged user':
+        return _drop_privileges() + argv, build_dir
+    if kind == 'none':
+        return argv, build_dir
     args = ['bwrap'] + BWRAP_COMMON + NO_INIT + [
         '--ro-bind', '/usr', '/usr', '--symlink', 'usr/bin', '/bin',
         '--symlink', 'usr/lib', '/lib', '--symlink', 'usr/lib64', '/lib64',
@@ -225,7 +233,36 @@ def compile_command(argv, build_dir, cache_dir=None):
     if cache_dir:
         args += ['--bind', cache_dir, '/ccache', '--setenv', 'CCACHE_DIR', '/ccache',
                  '--setenv', 'CCACHE_NOHASHDIR', '1']
-    return args + argv
+    return args + argv, None
+
+
+def compiles_share_a_cache():
+    """Whether compiles of students' code may share a compiler cache. Not as
+    the unprivileged user: its compiles could not write the grader's cache
+    without being able to write it all; they go without (a worker of the
+    book's chapters compiles in seconds)."""
+    return isolation() != 'unprivileged user'
+
+
+def compile_dir(prefix, parent):
+    """A new directory for a compile of a student's code: in parent, or,
+    where compiles run as the unprivileged user, in the temporary directory
+    (parent, the grader's cache, is closed to that user), made that user's by
+    hand_over() once the grader has written its files."""
+    if isolation() == 'unprivileged user':
+        return tempfile.mkdtemp(prefix=prefix)
+    return tempfile.mkdtemp(prefix=prefix, dir=parent)
+
+
+def hand_over(path):
+    """Makes the tree at path the sandbox user's, where compiles run as it."""
+    if isolation() != 'unprivileged user' or not _is_root():
+        return
+    uid = sandbox_uid()
+    for top, dirs, files in os.walk(path):
+        for name in dirs + files:
+            os.lchown(os.path.join(top, name), uid, uid)
+    os.lchown(path, uid, uid)
 
 
 def protect(paths):

@@ -3,8 +3,10 @@ into a solution region of a chapter. tests/tools/test_grade.py builds them
 into submissions and checks that none gains a point or changes a file.
 
 The code runs inside a function of the book (a solution region is a piece of
-a function body), where no header can be included: it makes Linux system
-calls itself (x86-64), as an attacker who has read the grader would. Each
+a function body), where no header can be included and no `asm` written (the
+grader compiles neither, tools/compile_wall.py): it makes Linux system calls
+through libc's `syscall` (x86-64 numbers), as an attacker who has read the
+grader would. Each
 attack runs once, the first time the region runs, and then throws: it solves
 nothing, so any point it gets is a point stolen.
 
@@ -18,11 +20,14 @@ would know them too.
 PRELUDE = r'''
 static int lrtAttackRuns = 0;
 if (lrtAttackRuns++ == 0) {
-auto sys = [](long n, long a = 0, long b = 0, long c = 0) -> long {
-    long r;
-    __asm__ __volatile__("syscall" : "=a"(r) : "a"(n), "D"(a), "S"(b), "d"(c)
-                         : "rcx", "r11", "memory");
-    return r;
+// ::syscall is declared only after the book's header: a call that names
+// it must be looked up where the template is instantiated, which an
+// argument of a global type (::div_t, through the `...`) makes happen.
+auto lrtCall = [](auto global, long n, long a, long b, long c) -> long {
+    return syscall(n, a, b, c, global);
+};
+auto sys = [&](long n, long a = 0, long b = 0, long c = 0) -> long {
+    return lrtCall(::div_t{}, n, a, b, c);
 };
 auto len = [](const char *s) { long n = 0; while (s[n]) ++n; return n; };
 auto put = [&](const char *path, const char *text) {   // O_WRONLY|O_CREAT|O_TRUNC

@@ -472,7 +472,7 @@ def make_submissions(ns, root=ROOT):
         'wrong_answer': {ns.e10: ('FAIL', None)},
         'renamed': stub10,
         'deleted': stub10,
-        'compile_leak': {ns.e10: ('COMPILE-ERROR', 'No such file or directory')},
+        'compile_leak': {ns.e10: ('COMPILE-ERROR', 'is not compiled: ')},
     }
     for name in ns.attacks:
         ns.expected[name] = attacked
@@ -483,6 +483,11 @@ def make_submissions(ns, root=ROOT):
 
 
 class GradeTest(unittest.TestCase):
+    # Where the batch is graded: with bubblewrap here, without namespaces in
+    # GradeWithoutNamespacesTest; and how the feedback names the isolation.
+    FALLBACK = False
+    ISOLATION = 'bubblewrap sandbox'
+
     @classmethod
     def setUpClass(cls):
         # What the book says is to be graded, and what each test must find.
@@ -512,6 +517,9 @@ class GradeTest(unittest.TestCase):
                  '--memory-limit', '512'] + cls.graded
         # Nor does the copy's grader write its bytecode into the copy.
         env = dict(os.environ, PYTHONDONTWRITEBYTECODE='1')
+        if cls.FALLBACK:
+            env['PATH'] = (failing_bwrap(os.path.join(cls.tmp, 'no-bwrap')) + os.pathsep +
+                           env['PATH'])
         # A clean grading first, so that the cache holds what the attacks aim
         # at there (a judge, a worker, verdicts) before they run.
         proc = subprocess.run(grade + [os.path.join(cls.subs, 'solution.zip'), '--out',
@@ -637,7 +645,7 @@ class GradeTest(unittest.TestCase):
         self.assertEqual({t['name'] for t in data['tests']
                           if t['visibility'] == 'after_published'}, hidden)
         self.assertIn('ignored `lrt/README.txt`', data['output'])
-        self.assertIn('bubblewrap sandbox', data['output'])
+        self.assertIn(self.ISOLATION, data['output'])
         junit = read(os.path.join(self.out, 'solution', 'junit.xml'))
         count = sum(len(tests) for tests in self.tests.values())
         self.assertEqual(junit.count('<testcase '), count)
@@ -981,6 +989,37 @@ def append(path, text):
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, 'a') as f:
         f.write(text)
+
+
+@unittest.skipUnless(os.geteuid() == 0, 'the fallback without namespaces needs root')
+class GradeWithoutNamespacesTest(GradeTest):
+    """The same batch, graded where bubblewrap cannot make namespaces (a
+    `bwrap` on PATH that fails as it does in a container that forbids them):
+    every submission must score as it does in the sandbox, and no attack may
+    gain a point, change a file or show a hidden test."""
+    FALLBACK = True
+    ISOLATION = 'as an unprivileged user, without namespaces'
+
+
+# The tests that grade with options of their own (plans, --chapters, kits,
+# --allow-changes-outside-exercises, the snapshot helpers) do not depend on
+# the isolation: they run once, in GradeTest.
+GRADED_IN_THE_BATCH = {
+    'test_expectations_match_the_book', 'test_solution_full_marks',
+    'test_student_edition_zero', 'test_two_of_three_exercises_score_those_two',
+    'test_compile_error_costs_its_exercise_only', 'test_compile_error_after_splice',
+    'test_crash_abort_exception', 'test_timeout_oom_exit',
+    'test_fake_gtest_output_counts_for_nothing',
+    'test_wrong_answer_shows_public_failures_and_hides_hidden_ones',
+    'test_no_grade_shows_hidden_test_code', 'test_renamed_chunk', 'test_deleted_chunk',
+    'test_duplicated_chunk', 'test_change_outside_exercises_restored',
+    'test_tampering_files_ignored', 'test_empty_submission', 'test_attacks_gain_nothing',
+    'test_attacks_change_no_file_outside_the_results', 'test_cache_held_what_the_attacks_aim_at',
+    'test_attack_names_no_grader_process', 'test_batch_csv',
+    'test_gradebook_has_a_row_per_student', 'test_metadata_inside_a_submission_is_ignored'}
+for _name in [n for n in dir(GradeTest) if n.startswith('test')]:
+    if _name not in GRADED_IN_THE_BATCH:
+        setattr(GradeWithoutNamespacesTest, _name, None)
 
 
 class WatchTest(unittest.TestCase):

@@ -49,23 +49,21 @@ print(json.dumps({'status': status, 'left': left}))
 '''
 
 
-# The daemon, in raw x86-64 system calls (the exercise's code cannot include
-# headers): once per worker, fork; the child leaves the session (setsid),
+# The daemon, in system calls through ::syscall (the exercise's code can
+# include no header and write no asm; the book's headers declare ::syscall on
+# the way): once per worker, fork; the child leaves the session (setsid),
 # takes a name the test looks for (prctl PR_SET_NAME) and waits for ever.
 DAEMON = 'lrtdaemon'
 START_DAEMON = r"""{
   static int lrtStarted = 0;
   if (!lrtStarted) {
     lrtStarted = 1;
-    long lrtPid;
-    asm volatile("syscall" : "=a"(lrtPid) : "a"(57L) : "rcx", "r11", "memory");
+    long lrtPid = ::syscall(57L);
     if (lrtPid == 0) {
       static const char lrtName[16] = "%s";
-      long lrtIgnored;
-      asm volatile("syscall" : "=a"(lrtIgnored) : "a"(112L) : "rcx", "r11", "memory");
-      asm volatile("syscall" : "=a"(lrtIgnored) : "a"(157L), "D"(15L), "S"(lrtName)
-                   : "rcx", "r11", "memory");
-      for (;;) asm volatile("syscall" : "=a"(lrtIgnored) : "a"(34L) : "rcx", "r11", "memory");
+      ::syscall(112L);
+      ::syscall(157L, 15L, lrtName);
+      for (;;) ::syscall(34L);
     }
   }
 }""" % DAEMON

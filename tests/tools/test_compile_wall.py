@@ -1,0 +1,248 @@
+"""What a compile of a student's code sees and shows (tools/compile_wall.py,
+docs/grading.md): no submission gets the book's solution of another exercise,
+or of a later assignment, through the compiler.
+
+A worker of ex-5.9 is compiled from the book's code with the student's text
+in ex-5.9's regions, beside the book's solutions of ex-5.10 and ex-5.11 (in
+the same header) and of chapters 2 to 4. The attacks ask the compiler to read
+those files (`asm(".incbin")` with a path relative to the compile's working
+directory, the same in both modes), to take the book's text that follows
+into a raw string, to splice in another fragment (a noweb use), or to make
+errors happen in the book's code so that the diagnostics quote it. Each is
+graded in both isolation modes; no line of the book's other solutions may
+appear in anything the grading writes or prints.
+
+The lexer itself is checked on its own below, construct by construct, and
+on the whole book (whose own code it must accept).
+"""
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import test_grade as tg  # noqa: E402
+
+sys.path.insert(0, os.path.join(tg.ROOT, 'tools'))
+import compile_wall  # noqa: E402
+import exercises  # noqa: E402
+import sandbox  # noqa: E402
+
+
+def read_json(path):
+    with open(path, encoding='utf-8') as f:
+        return json.load(f)
+
+
+def items(code):
+    """(kind, text) of what scan() finds in code, and whether it ends open."""
+    found = compile_wall.scan(code.split('\n'))
+    return [(k, t) for _, k, t in found.items], found.open is not None
+
+
+class ScanTest(unittest.TestCase):
+    def assertRefused(self, code, kind=None):
+        found, left_open = items(code)
+        self.assertTrue(found or left_open, code)
+        if kind:
+            self.assertIn(kind, [k for k, _ in found], code)
+
+    def assertAccepted(self, code):
+        self.assertEqual(items(code), ([], False), code)
+
+    def test_what_names_a_file_or_reaches_the_assembler(self):
+        for code in ('#include "/etc/passwd"', '  #  define X 1', '/* */ #if 1',
+                     '%:include <x>', 'int a; # include <x>'):
+            self.assertRefused(code)
+        self.assertRefused('#include "x"', 'directive')
+        for word in ('asm', '__asm', '__asm__', '_Pragma', '__attribute__', '__attribute',
+                     '__declspec'):
+            self.assertRefused('%s("x");' % word, 'keyword')
+        for code in ('[[gnu::section("x")]] int q;', 'int q [ /* */ [gnu::used]];',
+                     '<:<:gnu::used:>:> int q;'):
+            self.assertRefused(code)
+
+    def test_what_changes_how_the_book_is_read(self):
+        self.assertRefused('int a = 1; \\', 'line splice')
+        self.assertRefused('int a = 1; \\  ', 'line splice')
+        self.assertRefused('const char *s = "??=";', 'trigraph')
+        self.assertRefused('int x = a<:0:>;', 'digraph')
+        self.assertRefused('const char *s = R"x(')
+        self.assertRefused('const char *s = u8R"(abc')
+        self.assertRefused('/* open')
+        self.assertRefused('const char *s = "open;')
+        self.assertRefused("char c = 'x;")
+        self.assertRefused('auto s = "<<Other fragment>>";', 'fragment use inside a literal')
+        self.assertRefused('auto s = R"(\n<<Other fragment>>\n)";',
+                           'fragment use inside a raw string')
+        self.assertRefused('/* <<Other fragment>> */', 'fragment use inside a comment')
+
+    def test_plain_cpp_is_accepted(self):
+        for code in ('const char *s = "# include <x> asm __attribute__ ??";',
+                     "char c = '#'; char d = '\\''; int n = 1'000'000;",
+                     'double x = 1e+5, y = 0x1p-3, z = .5e-2;',
+                     'auto s = R"lrt(a "quoted" ) #include)lrt";',
+                     'auto t = u8"x", u = L"y"; char16_t c = u\'z\';',
+                     '// asm("x") #include [[',
+                     '/* multi-line\n   comment with # and asm */ int a;',
+                     'std::vector<::lrt::Float> v; auto f = [&](int i) { return v[i]; };',
+                     'int m[2][2] = {{1, 2}, {3, 4}}; (void)m[0][v[1]];',
+                     'x <<= 2; y = a << b;', 'z = c >> 1;',
+                     # a use compiles the book's code in one more place
+                     '<<Other fragment>>'):
+            self.assertAccepted(code)
+
+    def test_the_book_passes_its_own_check(self):
+        paths = sorted(glob.glob(os.path.join(tg.ROOT, 'chapters', '[0-9][0-9]-*.md')))
+        book = exercises.Book(paths, tests=False)
+        for chapter in book.chapters:
+            self.assertEqual(compile_wall.check(chapter, chapter, str), [], chapter.path)
+            # and no solution region of the book holds any of it: a student
+            # who writes what the book writes is never refused.
+            for region in chapter.regions:
+                scanned = compile_wall.scan([t for _, t in region.solution])
+                self.assertEqual((scanned.items, scanned.open, scanned.spans),
+                                 ([], None, []), (chapter.path, region.line(region.begin)))
+
+
+# The ex-5.9 region's attacks. The paths are relative to the compile's
+# working directory, which holds the tangled code in src/ in both modes.
+def incbin_leak(files):
+    """Code that puts each file's bytes into the worker and throws them."""
+    lines = ['std::string lrtLeak;']
+    for k, path in enumerate(files):
+        label = 'lrtLeak%d' % k
+        lines += ['asm(".ifndef %s\\n.pushsection .rodata\\n%s:\\n.incbin \\"%s\\"\\n'
+                  '.byte 0\\n.popsection\\n.endif");' % (label, label, path),
+                  '{ const char *p; asm("lea %s(%%%%rip), %%0" : "=r"(p)); lrtLeak += p; }'
+                  % label]
+    # A failure shows a few KB: the part around ex-5.11's solution.
+    lines.append('throw std::runtime_error(lrtLeak.substr(lrtLeak.find("gamma(3)") - 300, '
+                 '1000));')
+    return '\n'.join(lines)
+
+
+ATTACKS = {
+    # The book's headers as the compiler sees them: ex-5.10 and ex-5.11 in
+    # slabtest.h, a later assignment's ex-2.12 to ex-2.14 in geometry.h.
+    'incbin': incbin_leak(['src/lrt/core/slabtest.h', 'src/lrt/core/geometry.h']),
+    # The book's text after the region, up to the first `)"`, in a string.
+    'raw_string': 'static const char *lrtText = R"(',
+    # The next exercise's fragment spliced in by the tangle, as a string.
+    'fragment_use': 'throw std::runtime_error(R"lrt(\n<<Widen tFar to cover rounding '
+                    'error>>\n)lrt");',
+    # A name that the book's ex-5.11 code then uses (gamma(3)): the error is
+    # at ex-5.11's line, and its diagnostic would quote it.
+    'diagnostic': 'int gamma = 0; (void)gamma;',
+}
+
+
+class CompileLeakTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix='lrt-compile-wall-')
+        cls.copy = os.path.join(cls.tmp, 'repo')
+        tg.copy_book(tg.ROOT, cls.copy)
+        chapter = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
+        cls.subs = os.path.join(cls.tmp, 'subs')
+        for name, code in ATTACKS.items():
+            tg.put_chapter(cls.subs, name, tg.inject(chapter, tg.F9, code))
+        tg.put_chapter(cls.subs, 'solution', chapter)
+        cls.no_bwrap = tg.failing_bwrap(os.path.join(cls.tmp, 'no-bwrap'))
+        # What no grading may show: every line of the book's solutions but
+        # ex-5.9's own, long enough to be told from ordinary code.
+        paths = sorted(glob.glob(os.path.join(tg.ROOT, 'chapters', '0[2-5]-*.md')))
+        book = exercises.Book(paths, tests=False)
+        owner = {f: e.id for c in book.chapters for e in c.exercises for f in e.fragments}
+        cls.e9 = owner[tg.F9]
+        public = set()
+        for c in book.chapters:
+            inside = {r.line(i) for r in c.regions for i in range(r.begin, r.end + 1)}
+            public |= {t.strip() for k in c.chunks for i, t in enumerate(k.body)
+                       if k.line + 1 + i not in inside}
+        cls.secrets = sorted({t.strip() for c in book.chapters for r in c.regions
+                              if owner.get(r.chunk.name) != cls.e9
+                              for _, t in r.solution if len(t.strip()) >= 16} - public)
+        assert any('gamma(3)' in s for s in cls.secrets), cls.secrets
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def grade(self, mode, fallback):
+        out = os.path.join(self.tmp, 'out-' + mode.replace(' ', '-'))
+        env = dict(os.environ, PYTHONDONTWRITEBYTECODE='1')
+        if fallback:
+            env['PATH'] = self.no_bwrap + os.pathsep + env['PATH']
+        proc = subprocess.run(
+            [sys.executable, os.path.join(self.copy, 'tools', 'grade.py'), '--batch',
+             self.subs, '--out', out, '--chapters', '05', '--cache',
+             os.path.join(self.tmp, 'cache-' + mode.replace(' ', '-')),
+             '--time-limit', str(tg.TIME_LIMIT)],
+            cwd=self.copy, env=env, capture_output=True, text=True)
+        self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+        shown = proc.stdout + proc.stderr
+        for top, _, files in os.walk(out):
+            for name in files:
+                with open(os.path.join(top, name), encoding='utf-8', errors='replace') as f:
+                    shown += f.read()
+        for secret in self.secrets:
+            self.assertNotIn(secret, shown, 'the book\'s solution leaked (%s)' % mode)
+        for name in ATTACKS:
+            results = read_json(os.path.join(out, name, 'results.json'))
+            self.assertIn(mode, results['output'])
+            for test in results['tests']:
+                ex = test['name'].split()[0]
+                if ex == self.e9:
+                    self.assertEqual(test['status'], 'failed', (name, test['name']))
+                    self.assertIn('COMPILE-ERROR', test['output'], (name, test['name']))
+                else:
+                    self.assertEqual(test['status'], 'passed', (name, test['name']))
+        diagnostic = tg.read(os.path.join(out, 'diagnostic', 'results.txt'))
+        self.assertIn('error in the book\'s code of another exercise, which is not shown',
+                      diagnostic)
+        solution = read_json(os.path.join(out, 'solution', 'results.json'))
+        self.assertAlmostEqual(solution['score'], solution['max_score'], places=3)
+
+    @unittest.skipUnless(os.geteuid() == 0, 'the sandbox drops to its own user only as root')
+    def test_bubblewrap(self):
+        self.grade('bubblewrap', fallback=False)
+
+    @unittest.skipUnless(os.geteuid() == 0, 'the fallback needs root')
+    def test_fallback_without_namespaces(self):
+        self.grade('unprivileged user', fallback=True)
+
+
+@unittest.skipUnless(os.geteuid() == 0, 'the fallback needs root')
+class FallbackCompileTest(unittest.TestCase):
+    """Without namespaces, a compile of a student's code runs as the sandbox's
+    unprivileged user, in a directory of that user's, never as root."""
+
+    def test_compiles_run_as_the_sandbox_user(self):
+        tmp = tempfile.mkdtemp(prefix='lrt-compile-uid-')
+        self.addCleanup(shutil.rmtree, tmp, ignore_errors=True)
+        no_bwrap = tg.failing_bwrap(os.path.join(tmp, 'no-bwrap'))
+        code = ('import os, subprocess, sys; sys.path.insert(0, %r); import sandbox\n'
+                'assert sandbox.isolation() == "unprivileged user", sandbox.isolation()\n'
+                'work = sandbox.compile_dir("uid-", %r)\n'
+                'sandbox.hand_over(work)\n'
+                'argv, cwd = sandbox.compile_command(["sh", "-c", "id -u; touch made"], work)\n'
+                'out = subprocess.run(argv, cwd=cwd, capture_output=True, text=True)\n'
+                'print(out.stdout.strip(), os.stat(os.path.join(work, "made")).st_uid,'
+                ' sandbox.sandbox_uid())\n' % (os.path.join(tg.ROOT, 'tools'), tmp))
+        env = dict(os.environ, PATH=no_bwrap + os.pathsep + os.environ['PATH'])
+        proc = subprocess.run([sys.executable, '-c', code], env=env, capture_output=True,
+                              text=True)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        ran_as, owner, uid = map(int, proc.stdout.split())
+        self.assertNotEqual(ran_as, 0)
+        self.assertEqual((ran_as, owner), (uid, uid))
+
+
+if __name__ == '__main__':
+    unittest.main()

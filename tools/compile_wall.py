@@ -1,0 +1,240 @@
+"""What a student's code may hold, so that compiling it reads no file and
+quotes none of the book's solutions (docs/grading.md, "What a compile sees").
+
+A worker is compiled from the book's code with the student's text in one
+exercise's solution regions. That code sits beside the book's solutions of
+the other exercises (often in the same function) and the compiler can read
+every file of the build, so the student's text must not be able to:
+
+- name a file: `#include "..."` and every other preprocessing directive,
+  `asm(".incbin ...")`, and attributes, whose strings some compilers pass to
+  the assembler as they are (`section("...")`);
+- capture the text around it: a string literal or a comment opened in the
+  student's lines that ends in the book's (a raw string `R"(` would hold the
+  next exercise's solution), a macro that stringizes the book's code, a
+  noweb use `<<Other fragment>>` inside a string, which the tangle replaces
+  by that fragment's text there (noweb knows no C++; a use outside literals
+  only compiles the book's code in one more place);
+- change how the rest is read: a line splice (`\\` at a line's end), a
+  trigraph, the `<:` and `%:` digraphs, `_Pragma`.
+
+check() compares the chapter as it will be compiled with the book's chapter,
+chunk by chunk: every chunk must hold exactly the book's sequence of these
+constructs (the book's own `#include` lines stay allowed; a student may add
+none, change none and remove none), must end outside any comment or literal,
+and no comment or literal may run over a region's marker line or hold a
+noweb use.
+The student's solution regions therefore hold plain C++ statements and
+declarations only, which is all an exercise asks for.
+"""
+import re
+
+# Identifiers that reach the assembler or the preprocessor from C++ text.
+BANNED_WORDS = {'asm', '__asm', '__asm__', '_Pragma', '__attribute', '__attribute__',
+                '__declspec'}
+# A noweb use, as notangle finds it (anywhere on a line, C++ or not); `@<<`
+# is noweb's escape for a literal `<<`.
+USE = re.compile(r'(?<!@)<<(.+?)>>(?!=)')
+MARKER = re.compile(r'^\s*// (BEGIN|END) (SOLUTION|STUB)\s*$')
+TRIGRAPH = re.compile(r"\?\?[=/'()!<>-]")
+SPLICE = re.compile(r'\\[ \t]*$')
+IDENTIFIER = re.compile(r'[A-Za-z_$\u0080-\U0010ffff][A-Za-z0-9_$\u0080-\U0010ffff]*')
+PP_NUMBER = re.compile(r"\.?[0-9](?:[eEpP][+-]|'[0-9A-Za-z_]|[0-9A-Za-z_.])*")
+STRING_PREFIXES = ('u8', 'u', 'U', 'L', '')
+
+
+class Scan:
+    """The constructs of one chunk's lines that check() compares.
+
+    items: (line index, kind, text) in order;
+    spans: (first, last) line indexes of comments and literals that end on a
+           later line than they start;
+    open:  None, or (line index, what) of a comment or literal never closed."""
+    def __init__(self):
+        self.items, self.spans, self.open = [], [], None
+
+
+def scan(lines):
+    """Lexes lines of C++ (phases 1 to 3, as far as the constructs above need)."""
+    result = Scan()
+    for n, line in enumerate(lines):
+        for m in TRIGRAPH.finditer(line):
+            result.items.append((n, 'trigraph', m.group(0)))
+        if SPLICE.search(line):
+            result.items.append((n, 'line splice', line.strip()))
+    text = '\n'.join(lines)
+    starts = [0]
+    for line in lines:
+        starts.append(starts[-1] + len(line) + 1)
+
+    def line_at(pos):
+        lo, hi = 0, len(lines) - 1
+        while lo < hi:
+            mid = (lo + hi + 1) // 2
+            if starts[mid] <= pos:
+                lo = mid
+            else:
+                hi = mid - 1
+        return lo
+
+    def token(kind, begin, end):
+        first, last = line_at(begin), line_at(max(end - 1, begin))
+        if last > first:
+            result.spans.append((first, last))
+        if USE.search(text[begin:end]):
+            result.items.append((first, 'fragment use inside a %s' % kind,
+                                 text[begin:end].split('\n')[0].strip()))
+
+    i, size = 0, len(text)
+    line_start = True           # only blanks and comments so far on this line
+    previous = None             # the previous token's text
+    while i < size:
+        c = text[i]
+        if c == '\n':
+            line_start = True
+            i += 1
+            continue
+        if c in ' \t\r\f\v':
+            i += 1
+            continue
+        use = USE.match(text, i)
+        if use and (i == 0 or text[i - 1] != '@'):
+            # A fragment's name is prose: its quotes open no literal.
+            i, line_start, previous = use.end(), False, 'use'
+            continue
+        if text.startswith('//', i):
+            end = text.find('\n', i)
+            i = size if end < 0 else end
+            continue
+        if text.startswith('/*', i):
+            end = text.find('*/', i + 2)
+            if end < 0:
+                result.open = (line_at(i), 'a comment')
+                token('comment', i, size)
+                break
+            token('comment', i, end + 2)
+            i = end + 2
+            continue
+        word = IDENTIFIER.match(text, i)
+        if word:
+            name = word.group(0)
+            after = word.end()
+            if after < size and text[after] in '"\'' and (
+                    name in STRING_PREFIXES or name.endswith('R') and
+                    name[:-1] in STRING_PREFIXES and text[after] == '"'):
+                i = literal(text, i, after, name.endswith('R'), result, token, line_at)
+                if i is None:
+                    break
+                line_start, previous = False, 'literal'
+                continue
+            if name in BANNED_WORDS:
+                result.items.append((line_at(i), 'keyword', name))
+            i, line_start, previous = after, False, name
+            continue
+        number = PP_NUMBER.match(text, i)
+        if number:
+            i, line_start, previous = number.end(), False, number.group(0)
+            continue
+        if c in '"\'':
+            i = literal(text, i, i, False, result, token, line_at)
+            if i is None:
+                break
+            line_start, previous = False, 'literal'
+            continue
+        if c == '#' or text.startswith('%:', i):
+            n = line_at(i)
+            if line_start:
+                result.items.append((n, 'directive', ' '.join(lines[n].split())))
+            else:
+                result.items.append((n, 'stringizing outside a directive', c))
+            i += 1 if c == '#' else 2
+            line_start, previous = False, '#'
+            continue
+        if text.startswith('<:', i) and not (text.startswith('<::', i) and
+                                             text[i + 3:i + 4] not in (':', '>')):
+            result.items.append((line_at(i), 'digraph', '<:'))
+        if c == '[' and previous == '[':
+            result.items.append((line_at(i), 'attribute', '[['))
+        i, line_start, previous = i + 1, False, c
+    return result
+
+
+def literal(text, begin, quote, raw, result, token, line_at):
+    """Skips the literal whose quote is at `quote` (its prefix at begin);
+    returns where it ends, or None if it never does (result.open says so)."""
+    size = len(text)
+    if raw:
+        paren = text.find('(', quote + 1)
+        delimiter = text[quote + 1:paren] if paren >= 0 else None
+        if delimiter is None or len(delimiter) > 16 or re.search(r'[\s()\\]', delimiter):
+            result.open = (line_at(begin), 'a raw string with no valid delimiter')
+            token('raw string', begin, size)
+            return None
+        end = text.find(')' + delimiter + '"', paren + 1)
+        if end < 0:
+            result.open = (line_at(begin), 'a raw string')
+            token('raw string', begin, size)
+            return None
+        end += len(delimiter) + 2
+        token('raw string', begin, end)
+        return end
+    close = text[quote]
+    i = quote + 1
+    while i < size:
+        c = text[i]
+        if c == '\\':
+            i += 2
+            continue
+        if c == close:
+            token('literal', begin, i + 1)
+            return i + 1
+        if c == '\n':
+            break
+        i += 1
+    result.open = (line_at(begin), 'a string or character literal')
+    token('literal', begin, min(i, size))
+    return None
+
+
+def check(reference, composed, rename):
+    """Problems (messages) that keep `composed` (a parsed chapter: the book's
+    with a student's text in it) from being compiled, compared with the
+    book's chapter `reference`; rename(line) names a line of composed as the
+    student knows it (their file and line)."""
+    problems = []
+    book = {}
+    for chunk in reference.chunks:
+        book.setdefault(chunk.name, []).append(chunk)
+    seen = {}
+    for chunk in composed.chunks:
+        k = seen.get(chunk.name, 0)
+        seen[chunk.name] = k + 1
+        ours = book.get(chunk.name, [])
+        expected = scan(ours[k].body) if k < len(ours) else Scan()
+        found = scan(chunk.body)
+
+        def where(index, chunk=chunk):
+            return rename(chunk.line + 1 + index)
+
+        wanted = [(kind, text) for _, kind, text in expected.items]
+        for j, (index, kind, text) in enumerate(found.items):
+            if j >= len(wanted) or wanted[j] != (kind, text):
+                problems.append('%s: %s `%s` in <<%s>>, where the book has none'
+                                % (where(index), kind, text, chunk.name))
+                break
+        else:
+            if len(wanted) > len(found.items):
+                problems.append('%s: <<%s>> lacks the book\'s %s `%s`'
+                                % (where(0), chunk.name, *wanted[len(found.items)]))
+        if found.open is not None:
+            problems.append('%s: %s in <<%s>> is never closed'
+                            % (where(found.open[0]), found.open[1], chunk.name))
+        markers = [i for i, line in enumerate(chunk.body) if MARKER.match(line)]
+        for first, last in found.spans:
+            inside = [i for i in markers if first < i <= last]
+            if inside:
+                problems.append('%s: a comment or literal in <<%s>> runs over the '
+                                'region marker at %s' % (where(first), chunk.name,
+                                                         where(inside[0])))
+                break
+    return problems

@@ -56,6 +56,7 @@ every verdict decided by the judge, which holds the tests and runs none of
 the student's code.
 """
 import argparse
+import atexit
 import concurrent.futures
 import csv
 import difflib
@@ -91,7 +92,8 @@ MAX_TOTAL_BYTES = 64 << 20    # everything read from a submission
 DEFAULT_CXXFLAGS = '-std=c++17 -O0 -ffp-contract=off -Wall -Wextra'
 MAX_SHOWN = 4000              # characters of a failure shown
 # Failures that the judge's own code reports (a worker that crashed, hung or
-# ran out of memory) name this file; a hidden test's may be shown.
+# ran out of memory) name this file; of a hidden test's, their first words
+# are shown (shown_message).
 JUDGE_SOURCE = 'tests/calls/judge.cpp'
 FIRST_ERRORS = 10
 
@@ -514,15 +516,15 @@ def judge_exercise(args, judge, worker, results, secret):
     kept = os.path.join(args.cache, 'verdicts-%s.json' % key)
     try:
         with open(kept, encoding='utf-8') as f:
-            for r, (status, failures) in zip(results, json.load(f)):
-                r.status, r.failures = status, failures
+            for r, (status, failures, threw) in zip(results, json.load(f)):
+                r.status, r.failures, r.threw = status, failures, threw
                 r.message = '\n'.join(failures)
         return
     except (OSError, ValueError, TypeError):
         pass
     run_judge(args, judge, worker, results, secret)
     if all(r.status in ('PASS', 'FAIL', 'CRASH', 'OOM') for r in results):
-        atomic_write(kept, json.dumps([[r.status, r.failures] for r in results]))
+        atomic_write(kept, json.dumps([[r.status, r.failures, r.threw] for r in results]))
 
 
 def read_report(path):
@@ -545,6 +547,14 @@ def read_report(path):
 
 
 def run_judge(args, judge, worker, results, secret):
+    """Runs the judge on the tests of one exercise against its worker: the
+    public tests first, then the hidden ones, in two runs of the judge, each
+    with workers of its own, sharing the exercise's time. A worker sees the
+    arguments of every call it answers, and a public test's failure is shown
+    in full, with what the code threw: so the worker that answers public
+    tests must never see a hidden test's arguments, or it could keep them and
+    throw them in a later call (a hidden test's failure shows nothing the code
+    chose, shown_message)."""
     with tempfile.TemporaryDirectory(prefix='lrt-judge-') as tmp, \
             tempfile.TemporaryDirectory(prefix='lrt-worker-') as shared:
         # The sandbox's user must reach the binary, whatever the cache's
@@ -557,34 +567,60 @@ def run_judge(args, judge, worker, results, secret):
         with open(argv_file, 'w') as f:
             f.write('\n'.join(sandbox.worker_command(
                 binary, memory_mb=args.memory_limit, cpu_seconds=args.cpu_limit)) + '\n')
-        report = os.path.join(tmp, 'results.jsonl')
-        log_path = os.path.join(tmp, 'worker.log')
-        names = ':'.join(r.full for r in results)
-        cmd = [judge, '--lrt-worker=' + argv_file, '--lrt-secret=%d' % secret,
-               '--lrt-call-timeout=%g' % args.time_limit, '--lrt-worker-log=' + log_path,
-               '--lrt-results=' + report, '--gtest_filter=' + names,
-               '--gtest_shuffle', '--gtest_random_seed=%d' % (secret % 99999 + 1)]
-        budget = args.exercise_time_limit
+        # The secret goes to the judge in a file in this directory, which only
+        # the grader's user can enter (mkdtemp's 0700), and never on a command
+        # line or in an environment: any process of the machine can read
+        # /proc/PID/cmdline, a student's worker or compile too where the
+        # sandbox has no namespaces. The judge sets GoogleTest's shuffle seed
+        # from it itself (tests/calls/judge.cpp).
+        secret_file = os.path.join(tmp, 'secret')
+        with open(os.open(secret_file, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600),
+                  'w') as f:
+            f.write('%d\n' % secret)
+        deadline = time.monotonic() + args.exercise_time_limit
+        for part in ('public', 'hidden'):
+            tests = [r for r in results if r.hidden == (part == 'hidden')]
+            if tests:
+                judge_tests(args, judge, argv_file, secret_file, os.path.join(tmp, part),
+                            tests, deadline)
+
+
+def judge_tests(args, judge, argv_file, secret_file, base, results, deadline):
+    """One run of the judge, on the tests `results` (their names go in a
+    file too: a worker that read them on the judge's command line would know
+    which tests it answers), until the exercise's deadline; fills in their
+    statuses from the judge's report."""
+    tests_file, report = base + '.tests', base + '.results.jsonl'
+    with open(tests_file, 'w') as f:
+        f.write(''.join(r.full + '\n' for r in results))
+    cmd = [judge, '--lrt-worker=' + argv_file, '--lrt-secret-file=' + secret_file,
+           '--lrt-tests-file=' + tests_file, '--lrt-call-timeout=%g' % args.time_limit,
+           '--lrt-worker-log=' + base + '.worker.log', '--lrt-results=' + report]
+    ended = 'the exercise took longer than %d s in all' % args.exercise_time_limit
+    left = deadline - time.monotonic()
+    if left > 0:
         try:
             proc = subprocess.run(cmd, stdin=subprocess.DEVNULL, capture_output=True,
-                                  timeout=budget, start_new_session=True)
+                                  timeout=left, start_new_session=True)
             ended = None if proc.returncode in (0, 1) else \
                 'the judge ended with status %d' % proc.returncode
         except subprocess.TimeoutExpired:
-            ended = 'the exercise took longer than %d s in all' % budget
-        found = read_report(report)
-        for r in results:
-            test = found.get(r.full)
-            if test is None:
-                r.status = 'NOT-RUN' if ended is None else 'TIMEOUT'
-                r.message = ended or 'the judge has no test %s' % r.full
-                continue
-            r.failures = [str(f) for f in test.get('failures') or []]
-            if test.get('status') in ('CRASH', 'TIMEOUT', 'OOM'):
-                r.status = test['status']
-            else:
-                r.status = 'PASS' if test.get('passed') is True and not r.failures else 'FAIL'
-            r.message = '\n'.join(r.failures)
+            pass
+    found = read_report(report)
+    for r in results:
+        test = found.get(r.full)
+        if test is None:
+            r.status = 'NOT-RUN' if ended is None else 'TIMEOUT'
+            r.message = ended or 'the judge has no test %s' % r.full
+            continue
+        r.failures = [str(f) for f in test.get('failures') or []]
+        threw = test.get('threw')
+        r.threw = threw if isinstance(threw, str) else ''
+        if test.get('status') in ('CRASH', 'TIMEOUT', 'OOM'):
+            r.status = test['status']
+        else:
+            r.status = 'PASS' if test.get('passed') is True and not r.failures else 'FAIL'
+        r.message = '\n'.join(r.failures)
 
 
 # ---------------------------------------------------------------------------
@@ -597,6 +633,10 @@ class Result:
         self.max_score, self.hint = max_score, hint
         self.status, self.message = 'NOT-RUN', 'not run yet'
         self.failures = []   # the judge's failure messages
+        self.threw = ''      # the call whose exception failed the test
+        # The messages of the exercise's own stubs, which a hidden test's
+        # failure may show (shown_message).
+        self.stubs = frozenset()
 
     @property
     def full(self):
@@ -647,21 +687,44 @@ def clean(text, limit=MAX_SHOWN):
     return text if len(text) <= limit else text[:limit] + ' [...]'
 
 
+# The judge's words on a call that failed in the worker, as the judge's
+# failure reads them: "tests/calls/judge.cpp:LINE", GoogleTest's "Failed",
+# then "during Call: KIND: DETAIL" (tests/calls/judge.cpp, Kind). Of a hidden
+# test, only "during Call: KIND" is shown: the detail is the code's to choose.
+# Matched from the start: the first "during" is the judge's own.
+WORKER_FAILURE = re.compile(r'%s:\d+\n(?:Failed\n)?(during [A-Za-z_]\w*: (?:the code crashed|'
+                            r'the code took too long|the code ran out of memory|the answer '
+                            r'was refused))(?=:|$)' % re.escape(JUDGE_SOURCE), re.M)
+THROWN = re.compile(r'C\+\+ exception with description "(.*?)" thrown', re.S)
+HIDDEN_CHECK = 'a hidden test failed (its checks are not shown)'
+
+
 def shown_message(result):
     """What a student may see of a test's failure: everything for a public
-    test; for a hidden test, never its checks, only what the student's own
-    code threw and the judge's words on a worker that crashed or hung."""
+    test. A hidden test's worker saw the test's inputs, so what a student
+    sees of its failure holds nothing that the student's code chose, which
+    could carry them: never the test's checks (the values the code returned)
+    nor what the code threw, a signal or an exit status, only the kind of
+    failure (the code threw, crashed, took too long, ran out of memory) and
+    the call, whose name is public. Only the message of one of the
+    exercise's own stubs is shown as thrown: an unfinished exercise says so,
+    and the code can choose no more than which stub it throws."""
     if not result.hidden or not result.failures:
         return clean(result.message)
+    call = result.threw if re.fullmatch(r'[A-Za-z_]\w*', result.threw or '') else ''
     shown = []
     for failure in result.failures:
-        m = re.search(r'C\+\+ exception with description "(.*?)" thrown', failure, re.S)
-        if m:
-            text = 'threw: ' + m.group(1)
-        elif failure.startswith(JUDGE_SOURCE + ':'):
-            text = failure.split('\n', 1)[-1]
+        thrown = THROWN.search(failure)
+        worker = WORKER_FAILURE.match(failure)
+        if thrown and thrown.group(1) in result.stubs:
+            text = 'threw: ' + thrown.group(1)
+        elif thrown:
+            text = '%sthe code threw an exception (not shown for a hidden test)' % (
+                'during %s: ' % call if call else '')
+        elif worker:
+            text = worker.group(1)
         else:
-            text = 'a hidden test failed (its checks are not shown)'
+            text = HIDDEN_CHECK
         if text not in shown:
             shown.append(text)
     return clean('\n'.join(shown))
@@ -733,7 +796,7 @@ class Report:
                 elif r.status == 'NOT-RUN':
                     ET.SubElement(case, 'skipped', message=first_line(r.message))
                 elif r.status != 'PASS':
-                    ET.SubElement(case, 'error', message=first_line(r.message),
+                    ET.SubElement(case, 'error', message=first_line(shown_message(r)),
                                   type=r.status).text = shown_message(r)
         return ET.tostring(suites, encoding='unicode') + '\n'
 
@@ -875,9 +938,12 @@ def grade(args, path, out):
                     [(s, n, True) for s, n, _, _ in sorted(set(e.hidden_tests))]
             tests = list(dict.fromkeys(tests))
             hint = hint_text(e, chapter.lines)
+            stubs = frozenset(exercises.stub_message(e, f, later) for f in e.fragments
+                              for later in (False, True))
             for s, n, hidden in tests:
                 r = Result(e.id, chapter.number, s, n, hidden, points / len(tests), hint)
                 r.message = 'chapter %s is not in the submission' % chapter.path
+                r.stubs = stubs
                 report.results.append(r)
     for problem in sub.problems:
         report.notes.append('- ' + problem)
@@ -1210,6 +1276,20 @@ def write_gradebook(path, exercises_graded, students):
     atomic_write(path, csv_text(rows))
 
 
+def private_flags(flags):
+    """A flags file (@FILE, one argument a line) holding flags, in a directory
+    only this user can enter, removed when the grader exits. The batch gives
+    its graders the secret this way: on their command lines, every process of
+    the machine could read it (/proc/PID/cmdline), a student's worker in the
+    fallback without namespaces too."""
+    directory = tempfile.mkdtemp(prefix='lrt-batch-')
+    atexit.register(shutil.rmtree, directory, True)
+    path = os.path.join(directory, 'flags')
+    with open(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600), 'w') as f:
+        f.write(''.join(flag + '\n' for flag in flags))
+    return path
+
+
 def grade_batch(args):
     out = os.path.abspath(args.out or os.path.join(args.root, 'build', 'grade', 'batch'))
     found = submissions_in(args.batch)
@@ -1241,7 +1321,7 @@ def grade_batch(args):
                  str(args.time_limit), '--memory-limit', str(args.memory_limit),
                  '--cpu-limit', str(args.cpu_limit),
                  '--exercise-time-limit', str(args.exercise_time_limit),
-                 '--seed', str(args.secret),
+                 '@' + private_flags(['--seed', str(args.secret)]),
                  '--compile-time-limit', str(args.compile_time_limit),
                  '--cxxflags', args.cxxflags, '--build-jobs', '1']
     if args.allow_no_sandbox:

@@ -3,14 +3,24 @@
 // worker process that runs the student's code in a sandbox. The grader
 // (tools/grade.py) starts it as
 //
-//   judge --lrt-worker=FILE --lrt-secret=N --lrt-results=FILE
-//         [--lrt-call-timeout=S] [--lrt-worker-log=FILE] --gtest_filter=...
+//   judge --lrt-worker=FILE --lrt-secret-file=FILE --lrt-tests-file=FILE
+//         --lrt-results=FILE [--lrt-call-timeout=S] [--lrt-worker-log=FILE]
 //
 // The worker's FILE lists its command line, one argument a line (the sandbox,
-// its limits and the worker binary); the results FILE gets a line of JSON per
-// test as it ends. The judge never runs the student's code: it
-// decides every verdict from the worker's answers, and the worker never learns
-// which test asked.
+// its limits and the worker binary); the secret's FILE holds the grading's
+// secret (a decimal number), and the tests' FILE the tests to run, one
+// Suite.Name a line; the results FILE gets a line of JSON per test as it
+// ends. The judge never runs the student's code: it decides every verdict
+// from the worker's answers, and the worker never learns which test asked.
+//
+// The secret and the tests come in files, which the grader keeps where only
+// its own user can read them, and never on the command line: any process of
+// the machine may read another's command line (/proc/PID/cmdline), a
+// student's worker too where the sandbox has no namespaces of its own. A
+// worker that knew the secret could tell the tests apart by their order;
+// one that read the tests' names would know which it answers. So the judge
+// also sets GoogleTest's filter, shuffle and seed itself (main), and starts
+// each worker with an environment of its own (Worker::Start).
 //
 // Rounds. A test's body is written as straight-line code that calls
 // lrt::ex::Name(...) and checks each result. Sending every call to the worker
@@ -81,6 +91,7 @@ const int kMaxStarts = 40;               // worker processes per judge run
 
 struct Config {
     std::vector<std::string> workerArgv;
+    std::string path;   // the judge's PATH, the one variable a worker gets
     std::string workerLog = "/dev/null";
     double callTimeout = 10;
     uint64_t secret = 0;
@@ -90,6 +101,22 @@ double Now() {
     timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+// What went wrong with a call, in words of the judge's own: a failure that a
+// worker caused reads "during Call: KIND: DETAIL". KIND is one of these
+// fixed phrases; DETAIL (a signal, an exit status, a size, a message) the
+// code under test can choose, so where the grader must not show what the
+// code chose (a hidden test, whose worker saw the test's inputs and could
+// put them there), it shows "during Call: KIND" only (tools/grade.py,
+// shown_message, matches these words).
+const char *Kind(Status s) {
+    switch (s) {
+    case Status::Crashed: return "the code crashed";
+    case Status::TimedOut: return "the code took too long";
+    case Status::OutOfMemory: return "the code ran out of memory";
+    default: return "the answer was refused";
+    }
 }
 
 std::string StatusReply(Status s, const std::string &what) {
@@ -193,6 +220,12 @@ class Worker {
         for (const std::string &a : config.workerArgv)
             argv.push_back(const_cast<char *>(a.c_str()));
         argv.push_back(nullptr);
+        // Nothing of the judge's environment, which is the grader's and may
+        // hold anything, but PATH, where the sandbox's commands are found.
+        // bubblewrap clears the environment itself; without namespaces the
+        // worker would otherwise get all of it.
+        std::string pathVariable = "PATH=" + config.path;
+        char *environment[] = {const_cast<char *>(pathVariable.c_str()), nullptr};
         int log = open(config.workerLog.c_str(),
                        O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
         pid_t child = fork();
@@ -209,7 +242,7 @@ class Worker {
             if (in < 0 || back < 0 || dup2(in, 3) < 0 || dup2(back, 4) < 0)
                 _exit(126);
             for (int fd = 5; fd < 1024; ++fd) close(fd);
-            execvp(argv[0], argv.data());
+            execvpe(argv[0], argv.data(), environment);
             _exit(127);
         }
         if (log >= 0) close(log);
@@ -362,7 +395,7 @@ class Worker {
                     Status s = how.find("SIGXCPU") != std::string::npos
                                    ? Status::TimedOut
                                    : Status::Crashed;
-                    replies->push_back(StatusReply(s, "the code " + how));
+                    replies->push_back(StatusReply(s, how));
                     return;
                 }
             }
@@ -435,6 +468,7 @@ struct Session {
     std::vector<size_t> pending;  // slots answered speculatively this round
     bool verdict = false;         // the run whose failures count
     std::string worst;            // its gravest worker failure: CRASH, ...
+    std::string threw;            // the call whose exception is on its way out
 };
 Session *session = nullptr;
 uint64_t lastId = 0;
@@ -490,6 +524,7 @@ std::string Answer(const std::string &request,
         throw Abort();
     }
     Session &s = *session;
+    s.threw.clear();   // the body caught what an earlier call threw
     size_t i = s.next++;
     if (i < s.slots.size()) {
         if (s.slots[i].request == request) return s.slots[i].reply;
@@ -520,16 +555,18 @@ void Unpack(const std::string &reply, const char *name, Reader *r) {
         if (what.size() > kMaxMessage)
             what = what.substr(0, kMaxMessage) + " [... " +
                    std::to_string(what.size() - kMaxMessage) + " more bytes]";
+        if (Thrown(kind) == Thrown::BadAlloc) {
+            if (session && session->verdict && session->worst.empty())
+                session->worst = "OOM";
+            ADD_FAILURE() << "during " << name << ": " << Kind(Status::OutOfMemory)
+                          << ": it threw std::bad_alloc";
+            throw Abort();
+        }
+        if (session && session->verdict) session->threw = name;
         switch (Thrown(kind)) {
         case Thrown::InvalidArgument: throw std::invalid_argument(what);
         case Thrown::OutOfRange: throw std::out_of_range(what);
         case Thrown::LogicError: throw std::logic_error(what);
-        case Thrown::RuntimeError: throw std::runtime_error(what);
-        case Thrown::BadAlloc:
-            if (session && session->verdict && session->worst.empty())
-                session->worst = "OOM";
-            ADD_FAILURE() << "out of memory in " << name << " (std::bad_alloc)";
-            throw Abort();
         default: throw std::runtime_error(what);
         }
     }
@@ -545,7 +582,7 @@ void Unpack(const std::string &reply, const char *name, Reader *r) {
         what = "an unknown reply";
     if (session && session->verdict && session->worst.empty())
         session->worst = StatusWord(s);
-    ADD_FAILURE() << "during " << name << ": " << what;
+    ADD_FAILURE() << "during " << name << ": " << Kind(s) << ": " << what;
     (void)reply;
     throw Abort();
 }
@@ -598,6 +635,12 @@ void RunRounds(void (*body)()) {
     try {
         body();
     } catch (const Abort &) {
+    } catch (...) {
+        // What the code threw and the body did not catch: GoogleTest reports
+        // it with its message, which does not name the call; the grader
+        // names the call where it must not show the message (a hidden test).
+        if (!s.threw.empty()) ::testing::Test::RecordProperty("lrt_threw", s.threw);
+        throw;
     }
     if (!s.worst.empty())
         ::testing::Test::RecordProperty("lrt_status", s.worst);
@@ -610,6 +653,25 @@ namespace {
 
 bool StartsWith(const std::string &s, const std::string &prefix) {
     return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+#ifdef GTEST_FLAG_SET
+#define LRT_GTEST_SET(name, value) GTEST_FLAG_SET(name, value)
+#else
+#define LRT_GTEST_SET(name, value) (void)(::testing::GTEST_FLAG(name) = (value))
+#endif
+
+// The grading's secret, a decimal number alone in a file (a final newline
+// allowed).
+bool ReadSecret(const std::string &path, uint64_t *secret) {
+    std::ifstream in(path);
+    std::string text, rest;
+    if (!(in >> text) || in >> rest || text.size() > 20 ||
+        text.find_first_not_of("0123456789") != std::string::npos)
+        return false;
+    errno = 0;
+    *secret = std::strtoull(text.c_str(), nullptr, 10);
+    return errno == 0;
 }
 
 // The length of the well-formed UTF-8 sequence at s[i] that encodes a
@@ -668,21 +730,27 @@ std::string Cut(const std::string &text) {
 
 // Writes a line of JSON per finished test to a file, at once, so that what
 // finished is known even if the judge is stopped later:
-//   {"test": "Suite.Name", "passed": true, "status": "", "failures": [...]}
+//   {"test": "Suite.Name", "passed": true, "status": "", "threw": "",
+//    "failures": [...]}
+// status: the gravest worker failure of the verdict run (CRASH, TIMEOUT,
+// OOM, FAIL); threw: the call whose exception the body did not catch.
 class ResultLines : public ::testing::EmptyTestEventListener {
   public:
     explicit ResultLines(const std::string &path) : out(path, std::ios::app) {}
     bool ok() const { return bool(out); }
     void OnTestEnd(const ::testing::TestInfo &info) override {
         const ::testing::TestResult *r = info.result();
-        std::string status;
-        for (int i = 0; i < r->test_property_count(); ++i)
-            if (std::string(r->GetTestProperty(i).key()) == "lrt_status")
-                status = r->GetTestProperty(i).value();
+        std::string status, threw;
+        for (int i = 0; i < r->test_property_count(); ++i) {
+            std::string key = r->GetTestProperty(i).key();
+            if (key == "lrt_status") status = r->GetTestProperty(i).value();
+            if (key == "lrt_threw") threw = r->GetTestProperty(i).value();
+        }
         out << "{\"test\": "
             << JsonString(std::string(info.test_suite_name()) + "." + info.name())
             << ", \"passed\": " << (r->Passed() ? "true" : "false")
-            << ", \"status\": " << JsonString(status) << ", \"failures\": [";
+            << ", \"status\": " << JsonString(status)
+            << ", \"threw\": " << JsonString(threw) << ", \"failures\": [";
         int shown = 0;
         for (int i = 0; i < r->total_part_count() && shown < kMaxFailures; ++i) {
             const ::testing::TestPartResult &part = r->GetTestPartResult(i);
@@ -709,8 +777,11 @@ int main(int argc, char **argv) {
     signal(SIGPIPE, SIG_IGN);
     // What the workers leave comes to the judge (EndChildren).
     prctl(PR_SET_CHILD_SUBREAPER, 1);
+    const char *path = std::getenv("PATH");
+    config.path = path && *path ? path : "/usr/bin:/bin";
     std::vector<char *> rest{argv[0]};
-    std::string results;
+    std::string results, tests;
+    bool haveTests = false;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (StartsWith(a, "--lrt-worker=")) {
@@ -721,8 +792,25 @@ int main(int argc, char **argv) {
             }
             for (std::string line; std::getline(in, line);)
                 config.workerArgv.push_back(line);
-        } else if (StartsWith(a, "--lrt-secret=")) {
-            config.secret = std::strtoull(a.c_str() + 13, nullptr, 10);
+        } else if (StartsWith(a, "--lrt-secret-file=")) {
+            if (!ReadSecret(a.substr(18), &config.secret)) {
+                std::cerr << "judge: no secret (a decimal number) in " << a.substr(18)
+                          << "\n";
+                return 2;
+            }
+        } else if (StartsWith(a, "--lrt-tests-file=")) {
+            std::ifstream in(a.substr(17));
+            if (!in) {
+                std::cerr << "judge: cannot read " << a.substr(17) << "\n";
+                return 2;
+            }
+            for (std::string line; std::getline(in, line);)
+                if (!line.empty()) tests += (tests.empty() ? "" : ":") + line;
+            haveTests = true;
+        } else if (StartsWith(a, "--lrt-secret=") || StartsWith(a, "--gtest_random_seed")) {
+            std::cerr << "judge: the secret goes in a file (--lrt-secret-file), never on "
+                         "a command line, which every process can read\n";
+            return 2;
         } else if (StartsWith(a, "--lrt-call-timeout=")) {
             config.callTimeout = std::atof(a.c_str() + 19);
         } else if (StartsWith(a, "--lrt-worker-log=")) {
@@ -735,6 +823,13 @@ int main(int argc, char **argv) {
     }
     int n = int(rest.size());
     ::testing::InitGoogleTest(&n, rest.data());
+    // The tests run in an order that the secret shuffles (GoogleTest's seeds
+    // go from 1 to 99999), set here rather than given as --gtest_shuffle
+    // --gtest_random_seed=N, which would put the seed, and so part of the
+    // secret, on the command line; and the tests to run likewise.
+    LRT_GTEST_SET(shuffle, true);
+    LRT_GTEST_SET(random_seed, int(config.secret % 99999 + 1));
+    if (haveTests) LRT_GTEST_SET(filter, tests.empty() ? std::string("-*") : tests);
     if (!results.empty()) {
         auto *lines = new ResultLines(results);
         if (!lines->ok()) {

@@ -451,12 +451,17 @@ def make_submissions(ns, root=ROOT):
     put('compile_leak', replace_region(sol, F10, attacks.compile_leak(root)))
 
     # What each submission must score: {exercise: (status, text in its
-    # tests' output)} for chapter 5's exercises that do not pass.
+    # tests' output)} for chapter 5's exercises that do not pass. The text
+    # may be a pair: (public tests' text, hidden tests' text). A hidden test
+    # shows nothing the code chose (what it threw, a signal, an exit status:
+    # its worker saw the hidden inputs), only the kind of failure; but the
+    # message of the exercise's own stub.
     def every(status, text=None):
         return {e: (status, text % e if text and '%s' in text else text)
                 for e in ns.ch5}
     stub10 = {ns.e10: ('FAIL', 'Exercise %s is not done yet' % ns.e10)}
-    attacked = {ns.e10: ('FAIL', 'attack only: no solution here')}
+    threw = 'the code threw an exception (not shown for a hidden test)'
+    attacked = {ns.e10: ('FAIL', ('attack only: no solution here', threw))}
     ns.expected = {
         'solution': {}, 'duplicated': {}, 'changed_outside': {}, 'tamper': {},
         'student': every('FAIL', 'Exercise %s is not done yet'),
@@ -464,11 +469,13 @@ def make_submissions(ns, root=ROOT):
         'compile_error': {ns.e9: ('COMPILE-ERROR', None)},
         'compile_error_spliced': {ns.e11: ('COMPILE-ERROR', None)},
         'empty': every('NOT-RUN', 'is not in the submission'),
-        'crashes': {ns.e9: ('CRASH', 'SIGSEGV'), ns.e10: ('CRASH', 'SIGABRT'),
-                    ns.e11: ('FAIL', 'student bug')},
-        'hangs': {ns.e9: ('TIMEOUT', None), ns.e10: ('OOM', 'bad_alloc'),
-                  ns.e11: ('CRASH', 'exited with status 0')},
-        'fake_pass': {ns.e10: ('CRASH', 'exited with status 0')},
+        'crashes': {ns.e9: ('CRASH', ('SIGSEGV', ': the code crashed\n')),
+                    ns.e10: ('CRASH', ('SIGABRT', ': the code crashed\n')),
+                    ns.e11: ('FAIL', ('student bug', threw))},
+        'hangs': {ns.e9: ('TIMEOUT', None),
+                  ns.e10: ('OOM', ('bad_alloc', ': the code ran out of memory\n')),
+                  ns.e11: ('CRASH', ('exited with status 0', ': the code crashed\n'))},
+        'fake_pass': {ns.e10: ('CRASH', ('exited with status 0', ': the code crashed\n'))},
         'wrong_answer': {ns.e10: ('FAIL', None)},
         'renamed': stub10,
         'deleted': stub10,
@@ -476,10 +483,12 @@ def make_submissions(ns, root=ROOT):
     }
     for name in ns.attacks:
         ns.expected[name] = attacked
-    ns.expected['huge_allocation'] = {ns.e10: ('OOM', 'bad_alloc')}
+    ns.expected['huge_allocation'] = {ns.e10: ('OOM', ('bad_alloc',
+                                                       ': the code ran out of memory\n'))}
     # On a busy machine the forks can outlast a call's time limit: TIMEOUT
     # instead of FAIL, and the exercise scores 0 either way.
-    ns.expected['fork_bomb'] = {ns.e10: (('FAIL', 'TIMEOUT'), 'attack only: no solution here')}
+    ns.expected['fork_bomb'] = {ns.e10: (('FAIL', 'TIMEOUT'),
+                                         ('attack only: no solution here', threw))}
 
 
 class GradeTest(unittest.TestCase):
@@ -574,8 +583,10 @@ class GradeTest(unittest.TestCase):
                          sorted('%s %s' % (exercise, name) for name, _ in self.tests[exercise]))
         hidden = {name for name, h in self.tests[exercise] if h}
         # status may be a tuple of the statuses allowed; contains applies to
-        # the first of them.
+        # the first of them. contains may be a pair: (the public tests' text,
+        # the hidden tests'), and then a hidden test must not show the first.
         allowed = status if isinstance(status, tuple) else (status,)
+        shown, kept = contains if isinstance(contains, tuple) else (contains, contains)
         for t in tests:
             self.assertEqual(len(t['tags']), 1, t)
             self.assertIn(t['tags'][0], allowed, t)
@@ -588,7 +599,12 @@ class GradeTest(unittest.TestCase):
                              if t['name'].split()[1] in hidden else 'visible', t)
             self.assertIn('**%s**' % got, t['output'])
             if contains and got == allowed[0]:
-                self.assertIn(contains, t['output'], t)
+                if t['name'].split()[1] not in hidden:
+                    self.assertIn(shown, t['output'], t)
+                else:
+                    self.assertIn(kept, t['output'], t)
+                    if kept != shown:
+                        self.assertNotIn(shown, t['output'], t)
 
     def assertGraded(self, data, expected, max_score=None):
         """Chapter 5's exercises as expected (the rest pass), the other

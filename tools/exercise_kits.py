@@ -74,7 +74,7 @@ VALIDATIONS = EDITIONS + ('grading',)
 # student's machine may have no browser.
 TOOL_TESTS_LEFT_OUT = ('exercises', 'test_exercises.py', 'test_grade.py', 'attacks.py',
                        'test_grade_batch.py', 'test_grade_crash.py', 'test_grade_limits.py',
-                       'test_compile_wall.py', 'test_grade_hidden.py',
+                       'test_compile_wall.py', 'test_grade_hidden.py', 'test_grade_wall.py',
                        'test_gradescope.py', 'test_html.py', '__pycache__')
 # Make variables of the calling make that must not leak into a kit's make.
 MAKE_ENV_DROP = ('CHAPTERS', 'BUILD', 'MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'MAKEOVERRIDES',

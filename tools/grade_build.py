@@ -11,7 +11,9 @@ and cached by its sources.
 
 A worker is tests/calls/worker.cpp with the chapter's exercise calls, linked
 with the code tangled from a directory of chapters (the book's, with the
-student's text for one exercise). It is compiled inside the sandbox
+student's text for one exercise), and with tests/calls/wall.cpp, its entry
+point, which installs the worker's system-call filter before anything else
+runs. It is compiled inside the sandbox
 (tools/sandbox.py): the compiler sees the tangled code and the public call
 sources, nothing of the grader, so an `#include` of a hidden file finds
 nothing. It is linked statically, so that the sandbox it runs in can be empty.
@@ -53,7 +55,13 @@ TANGLE_TOOLS = ['tools/tangle.py', 'tools/exercise_filter.py', 'tools/fragment_c
 # MB of one file that a worker's build may write: the book's workers are
 # about 3 MB, their objects less.
 BUILD_FILE_MB = 64
-CALL_SOURCES = ['tests/calls/core.h', 'tests/calls/calls.h', 'tests/calls/worker.cpp']
+CALL_SOURCES = ['tests/calls/core.h', 'tests/calls/calls.h', 'tests/calls/worker.cpp',
+                'tests/calls/wall.cpp']
+# The worker's entry point: tests/calls/wall.cpp's routine that installs the
+# system-call filter before the C library, or any of the student's code, runs
+# (the student's code can run at static-initialization time), then jumps to
+# the C library's _start.
+WALL_LINK = ['obj/wall.o', '-Wl,-e,lrt_wall_entry']
 
 
 class BuildError(Exception):
@@ -350,7 +358,8 @@ class WorkerBuild:
         todo = [s for s in all_sources if s in needed]
         commands = [self._command(work, self._cxx() + [
             '-DLRT_WORKER', '-DLRT_CALLS_HEADER="%s"' % self.calls_header,
-            '-c', 'tests/calls/worker.cpp', '-o', 'obj/worker.o'])]
+            '-c', 'tests/calls/worker.cpp', '-o', 'obj/worker.o']),
+            self._command(work, self._cxx() + ['-c', 'tests/calls/wall.cpp', '-o', 'obj/wall.o'])]
         for s in todo:
             commands.append(self._command(work, self._cxx() + [
                 '-c', 'src/' + s, '-o', 'obj/' + s.replace('/', '_') + '.o']))
@@ -359,7 +368,7 @@ class WorkerBuild:
             return failed
         for attempt in (0, 1):
             objects = ['obj/worker.o'] + ['obj/' + s.replace('/', '_') + '.o' for s in todo]
-            argv = ['g++', '-static', '-o', 'worker'] + objects + ['-pthread']
+            argv = ['g++', '-static', '-o', 'worker'] + objects + WALL_LINK + ['-pthread']
             code, output = run(*self._command(work, argv), timeout=self._time_left())
             if code == 0:
                 return None
@@ -407,8 +416,8 @@ class WorkerBuild:
                 # it took.
                 objects = ['obj/' + s.replace('/', '_') + '.o' for s in sources]
                 code, out = run(['ar', 'rcs', 'lib.a'] + objects, cwd=work)
-                code, out = run(['g++', '-static', '-o', 'probe', 'obj/worker.o', 'lib.a',
-                                 '-pthread', '-Wl,--trace'], cwd=work)
+                code, out = run(['g++', '-static', '-o', 'probe', 'obj/worker.o', 'lib.a'] +
+                                WALL_LINK + ['-pthread', '-Wl,--trace'], cwd=work)
                 taken = set(re.findall(r'lib\.a\((\S+?)\.o\)', out))
                 self._needed = {s for s in sources if s.replace('/', '_') in taken}
                 with open(record, 'w') as f:

@@ -20,6 +20,12 @@ Isolation, the best this machine allows (isolation() says which):
 - "none": neither: only the limits. The grader refuses this unless told
   otherwise (--allow-no-sandbox), since the code then runs as the grader.
 
+In every mode the worker also installs a system-call filter on itself at its
+entry point, before any of the student's code runs (tests/calls/wall.cpp):
+it opens no file, starts no process or thread, connects nowhere and signals
+only itself. Without namespaces, that filter is what keeps the worker from
+the files the world can read.
+
 Limits (prlimit): address space, CPU seconds, file size, processes, open
 files, no core dumps.
 """
@@ -179,12 +185,14 @@ def describe():
     """One sentence for the feedback: how the student's code was isolated."""
     return {
         'bubblewrap': 'in a bubblewrap sandbox (no network, no view of the grader or '
-                      'of other files, its own processes only)',
+                      'of other files, its own processes only), under a system-call '
+                      'filter',
         'unprivileged user': 'as an unprivileged user, without namespaces (bubblewrap '
-                             'cannot run here), with limits on memory, time and '
-                             'processes',
-        'none': 'WITHOUT ISOLATION (no bubblewrap and not root): only limits on memory, '
-                'time and processes',
+                             'cannot run here), under a system-call filter (no files, '
+                             'no network, no other processes), with limits on memory, '
+                             'time and processes',
+        'none': 'WITHOUT ISOLATION (no bubblewrap and not root): only a system-call '
+                'filter and limits on memory, time and processes',
     }[isolation()]
 
 

@@ -88,6 +88,9 @@ const size_t kFreeReplyBytes = 256;
 const size_t kMaxTestReplies = 256u << 20;
 const size_t kMaxMessage = 4096;
 const int kMaxStarts = 40;               // worker processes per judge run
+// A worker's exit status when the kernel refused its system-call filter: it
+// never runs the student's code then (tests/calls/wall.cpp).
+const int kWallRefused = 121;
 
 struct Config {
     std::vector<std::string> workerArgv;
@@ -287,6 +290,9 @@ class Worker {
         if (WIFSIGNALED(status)) return "killed by " + SignalName(WTERMSIG(status));
         if (WIFEXITED(status)) {
             int code = WEXITSTATUS(status);
+            if (code == kWallRefused)
+                return "exited with status " + std::to_string(code) + " (or could not "
+                       "start: the kernel refused the worker's system-call filter)";
             // The sandbox reports a signal that ended the program as 128 + n.
             if (code > 128 && code < 128 + 65)
                 return "killed by " + SignalName(code - 128);

@@ -1076,16 +1076,18 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
                 return '%s:%d%s' % (m.group(1) if m else os.path.basename(path), line, col)
 
             refused = compile_wall.check(chapter, composed,
-                                         lambda n: '%s:%d' % line_map[n - 1])
+                                         lambda n: '%s:%d' % line_map[n - 1],
+                                         set(exercise.fragments))
             if refused:
                 for r in mine:
                     r.status = 'COMPILE-ERROR'
                     r.message = '%s is not compiled: %s' % (exercise.id, '\n'.join(refused))
                 report.notes += ['', '**%s is not compiled** (its tests score 0): a solution '
-                                 'region holds C++ statements and declarations only; no '
-                                 'preprocessing directive, `asm`, attribute, `_Pragma`, '
-                                 'line splice, trigraph or digraph, and no comment or '
-                                 'literal left open or holding a fragment use:' % exercise.id, '```',
+                                 'region holds C++ statements and declarations only, its '
+                                 'brackets balanced; no preprocessing directive, `asm`, '
+                                 'attribute, `_Pragma`, name reserved to the compiler '
+                                 '(`__x`, `_X`), line splice, trigraph or digraph, and no '
+                                 'comment or literal left open or holding a fragment use:' % exercise.id, '```',
                                  fence_safe('\n'.join(refused)), '```']
                 report.write()
                 continue

@@ -16,7 +16,12 @@ every file of the build, so the student's text must not be able to:
   by that fragment's text there (noweb knows no C++; a use outside literals
   only compiles the book's code in one more place);
 - change how the rest is read: a line splice (`\\` at a line's end), a
-  trigraph, the `<:` and `%:` digraphs, `_Pragma`.
+  trigraph, a digraph, `_Pragma`;
+- reach any of these through a macro: names reserved to the implementation
+  (`__REDIRECT`, `__STRING`, ...) are refused too;
+- enclose the book's text in a bracket it opens: an unbalanced
+  `assert((` or `static_assert(false, __STRING((` in one region and `))` in
+  the next stringizes the book's solution between them.
 
 check() compares the chapter as it will be compiled with the book's chapter,
 chunk by chunk: every chunk must hold exactly the book's sequence of these
@@ -41,6 +46,14 @@ SPLICE = re.compile(r'\\[ \t]*$')
 IDENTIFIER = re.compile(r'[A-Za-z_$\u0080-\U0010ffff][A-Za-z0-9_$\u0080-\U0010ffff]*')
 PP_NUMBER = re.compile(r"\.?[0-9](?:[eEpP][+-]|'[0-9A-Za-z_]|[0-9A-Za-z_.])*")
 STRING_PREFIXES = ('u8', 'u', 'U', 'L', '')
+# Names reserved to the compiler and its library (a leading `__`, or `_` and
+# a capital): their macros reach what the words above do, for example
+# glibc's __REDIRECT (an asm label of the caller's text), __STRING (`#x`) and
+# __glibc_macro_warning1 (a _Pragma).
+RESERVED = re.compile(r'__|_[A-Z]')
+DIGRAPH = re.compile(r'<:|:>|<%|%>|%:')
+OPENERS = '([{'
+CLOSERS = {')': '(', ']': '[', '}': '{'}
 
 
 class Scan:
@@ -49,9 +62,11 @@ class Scan:
     items: (line index, kind, text) in order;
     spans: (first, last) line indexes of comments and literals that end on a
            later line than they start;
-    open:  None, or (line index, what) of a comment or literal never closed."""
+    open:  None, or (line index, what) of a comment or literal never closed;
+    unbalanced: None, or (line index, bracket) of the first bracket that
+           closes none, closes another kind, or is never closed."""
     def __init__(self):
-        self.items, self.spans, self.open = [], [], None
+        self.items, self.spans, self.open, self.unbalanced = [], [], None, None
 
 
 def scan(lines):
@@ -86,6 +101,7 @@ def scan(lines):
                                  text[begin:end].split('\n')[0].strip()))
 
     i, size = 0, len(text)
+    stack = []                  # the brackets open so far
     line_start = True           # only blanks and comments so far on this line
     previous = None             # the previous token's text
     while i < size:
@@ -129,6 +145,8 @@ def scan(lines):
                 continue
             if name in BANNED_WORDS:
                 result.items.append((line_at(i), 'keyword', name))
+            elif RESERVED.match(name):
+                result.items.append((line_at(i), 'reserved name', name))
             i, line_start, previous = after, False, name
             continue
         number = PP_NUMBER.match(text, i)
@@ -150,12 +168,19 @@ def scan(lines):
             i += 1 if c == '#' else 2
             line_start, previous = False, '#'
             continue
-        if text.startswith('<:', i) and not (text.startswith('<::', i) and
-                                             text[i + 3:i + 4] not in (':', '>')):
-            result.items.append((line_at(i), 'digraph', '<:'))
+        digraph = DIGRAPH.match(text, i)
+        if digraph and not (text.startswith('<::', i) and text[i + 3:i + 4] not in (':', '>')):
+            result.items.append((line_at(i), 'digraph', digraph.group(0)))
         if c == '[' and previous == '[':
             result.items.append((line_at(i), 'attribute', '[['))
+        if c in OPENERS:
+            stack.append(c)
+        elif c in CLOSERS:
+            if not stack or stack.pop() != CLOSERS[c]:
+                result.unbalanced = result.unbalanced or (line_at(i), c)
         i, line_start, previous = i + 1, False, c
+    if stack:
+        result.unbalanced = result.unbalanced or (len(lines) - 1, stack[-1])
     return result
 
 
@@ -196,21 +221,64 @@ def literal(text, begin, quote, raw, result, token, line_at):
     return None
 
 
-def check(reference, composed, rename):
+def secret_chunks(reference, mine):
+    """Names of the chunks of `reference` whose text holds a solution region
+    of an exercise other than the one of fragments `mine`, themselves or
+    through the fragments they use."""
+    secret = {c.name for c in reference.chunks if c.regions and c.name not in mine}
+    uses = {}
+    for chunk in reference.chunks:
+        uses.setdefault(chunk.name, set()).update(
+            m.group(1) for line in chunk.body for m in USE.finditer(line))
+    grown = True
+    while grown:
+        grown = False
+        for name, used in uses.items():
+            if name not in secret and used & secret:
+                secret.add(name)
+                grown = True
+    return secret
+
+
+def masked(chunk, mine):
+    """A chunk's lines as they are compiled, the insides of the regions of
+    `mine` left out: stub blocks are never compiled (tools/exercise_filter.py)
+    and the grader fills the regions of other exercises without them."""
+    lines, skip, stub = [], False, False
+    for line in chunk.body:
+        marker = MARKER.match(line)
+        if marker and marker.group(2) == 'STUB':
+            stub = marker.group(1) == 'BEGIN'
+        elif stub:
+            continue
+        elif marker and chunk.name in mine:
+            skip = marker.group(1) == 'BEGIN'
+            lines.append(line.strip())
+        elif not skip:
+            lines.append(line.rstrip())
+    while lines and not lines[-1]:
+        lines.pop()
+    return lines
+
+
+def check(reference, composed, rename, mine):
     """Problems (messages) that keep `composed` (a parsed chapter: the book's
-    with a student's text in it) from being compiled, compared with the
-    book's chapter `reference`; rename(line) names a line of composed as the
-    student knows it (their file and line)."""
+    with a student's text in it for the exercise whose fragments are `mine`)
+    from being compiled, compared with the book's chapter `reference`;
+    rename(line) names a line of composed as the student knows it (their file
+    and line)."""
     problems = []
     book = {}
     for chunk in reference.chunks:
         book.setdefault(chunk.name, []).append(chunk)
+    secret = secret_chunks(reference, mine)
     seen = {}
     for chunk in composed.chunks:
         k = seen.get(chunk.name, 0)
         seen[chunk.name] = k + 1
         ours = book.get(chunk.name, [])
-        expected = scan(ours[k].body) if k < len(ours) else Scan()
+        original = ours[k] if k < len(ours) else None
+        expected = scan(original.body) if original else Scan()
         found = scan(chunk.body)
 
         def where(index, chunk=chunk):
@@ -237,4 +305,31 @@ def check(reference, composed, rename):
                                 'region marker at %s' % (where(first), chunk.name,
                                                          where(inside[0])))
                 break
+        # Brackets: the book's chunks and regions each balance theirs, so
+        # that no code around a region or a fragment use can take it into a
+        # macro's argument.
+        for region in chunk.regions:
+            inner = scan(chunk.body[region.begin + 1:region.end]).unbalanced
+            if inner is not None:
+                problems.append('%s: the brackets of the solution region in <<%s>> do not '
+                                'balance (`%s`): a region opens and closes its own'
+                                % (where(region.begin + 1 + inner[0]), chunk.name, inner[1]))
+        if found.unbalanced is not None and not any(
+                scan(chunk.body[r.begin + 1:r.end]).unbalanced for r in chunk.regions):
+            problems.append('%s: the brackets of <<%s>> do not balance (`%s`)'
+                            % (where(found.unbalanced[0]), chunk.name, found.unbalanced[1]))
+        # Where a student may change code outside the regions, no change may
+        # touch the text around another exercise's solution.
+        if original is not None and chunk.name in secret:
+            if masked(chunk, mine) != masked(original, mine):
+                problems.append('%s: <<%s>> holds the book\'s solution of another exercise '
+                                '(itself or through the fragments it uses): it may change in '
+                                'your exercise\'s regions only' % (where(0), chunk.name))
+        elif original is None:
+            used = [m.group(1) for line in chunk.body for m in USE.finditer(line)
+                    if m.group(1) in secret]
+            if used:
+                problems.append('%s: <<%s>> is not in the book and uses <<%s>>, which holds '
+                                'the book\'s solution of another exercise'
+                                % (where(0), chunk.name, used[0]))
     return problems

@@ -1076,16 +1076,18 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
                 return '%s:%d%s' % (m.group(1) if m else os.path.basename(path), line, col)
 
             refused = compile_wall.check(chapter, composed,
-                                         lambda n: '%s:%d' % line_map[n - 1])
+                                         lambda n: '%s:%d' % line_map[n - 1],
+                                         set(exercise.fragments))
             if refused:
                 for r in mine:
                     r.status = 'COMPILE-ERROR'
                     r.message = '%s is not compiled: %s' % (exercise.id, '\n'.join(refused))
                 report.notes += ['', '**%s is not compiled** (its tests score 0): a solution '
-                                 'region holds C++ statements and declarations only; no '
-                                 'preprocessing directive, `asm`, attribute, `_Pragma`, '
-                                 'line splice, trigraph or digraph, and no comment or '
-                                 'literal left open or holding a fragment use:' % exercise.id, '```',
+                                 'region holds C++ statements and declarations only, its '
+                                 'brackets balanced; no preprocessing directive, `asm`, '
+                                 'attribute, `_Pragma`, name reserved to the compiler '
+                                 '(`__x`, `_X`), line splice, trigraph or digraph, and no '
+                                 'comment or literal left open or holding a fragment use:' % exercise.id, '```',
                                  fence_safe('\n'.join(refused)), '```']
                 report.write()
                 continue
@@ -1453,6 +1455,21 @@ class FlagsFileParser(argparse.ArgumentParser):
         return [] if not line or line.startswith('#') else [line]
 
 
+def protect_from_the_sandbox(args, submissions, out):
+    """Without namespaces, the sandbox's user sees the file system as any
+    user does: what it must not read is made unreadable to others (the
+    hidden tests, the book's chapters with every solution, the cache with
+    the judges, the submissions, the results with the secret). Its code can
+    name no file (tools/compile_wall.py, and the worker's system call
+    filter); this is the wall behind those."""
+    if sandbox.isolation() != 'unprivileged user':
+        return
+    if out:
+        os.makedirs(out, exist_ok=True)
+    sandbox.protect([os.path.join(args.root, 'tests', 'hidden'),
+                     os.path.join(args.root, 'chapters'), args.cache, submissions, out])
+
+
 def main(argv=None):
     parser = FlagsFileParser(description=__doc__.split('\n')[0],
                              formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -1509,19 +1526,19 @@ def main(argv=None):
         parser.error('the student\'s code cannot be isolated here (no working bubblewrap, '
                      'and not root): install bubblewrap, run as root, or give '
                      '--allow-no-sandbox for a grade that the code could forge')
-    if sandbox.isolation() == 'unprivileged user':
-        sandbox.protect([os.path.join(args.root, 'tests', 'hidden'), args.cache])
     if args.roster and not args.batch:
         parser.error('--roster goes with --batch')
     if args.batch:
         if not os.path.isdir(args.batch):
             parser.error('--batch %s is not a directory' % args.batch)
+        protect_from_the_sandbox(args, args.batch, args.out and os.path.abspath(args.out))
         return grade_batch(args)
     if not args.submission:
         parser.error('give a SUBMISSION (a directory, .tar.gz or .zip) or --batch DIR')
     if not os.path.exists(args.submission):
         parser.error('%s does not exist' % args.submission)
     out = os.path.abspath(args.out or default_out(parser, args.root, args.submission))
+    protect_from_the_sandbox(args, args.submission, out)
     report = grade(args, os.path.abspath(args.submission), out)
     if not args.quiet:
         with open(os.path.join(out, 'results.txt'), encoding='utf-8') as f:

@@ -266,8 +266,7 @@ class WorkerBuild:
         self.deadline = None     # when the build of the student's code must end
         self.cxxflags = cxxflags or WORKER_CXXFLAGS
         self.jobs = jobs
-        self.ccache = (os.path.join(cache, 'ccache') if shutil.which('ccache') and
-                       sandbox.compiles_share_a_cache() else None)
+        self.ccache = sandbox.compile_cache(os.path.join(cache, 'ccache'))
         self.calls_header = 'ch%s/exercise_calls.h' % number
         self.call_files = CALL_SOURCES + ['tests/' + self.calls_header]
         self._needed = None      # the set needed() found, once it has
@@ -337,8 +336,6 @@ class WorkerBuild:
 
     def _command(self, work, argv):
         limits = sandbox.compile_limits(self.memory_mb, BUILD_FILE_MB)
-        if self.ccache:
-            os.makedirs(self.ccache, exist_ok=True)
         wrapped, cwd = sandbox.compile_command(argv, work, self.ccache)
         return (limits + wrapped, cwd)
 

@@ -41,6 +41,9 @@ import tempfile
 # The unprivileged user the sandbox runs as when the grader is root: a uid
 # that no account uses, so that RLIMIT_NPROC counts the sandbox alone.
 SANDBOX_UID = 64123
+# The group of every sandbox user: the one thing they share is the compiler
+# cache of the sandboxed compiles (compile_cache()).
+SANDBOX_GID = SANDBOX_UID
 
 BWRAP_COMMON = ['--unshare-all', '--unshare-user', '--die-with-parent', '--new-session',
                 '--disable-userns', '--cap-drop', 'ALL', '--hostname', 'sandbox',
@@ -147,7 +150,7 @@ def _drop_privileges():
     if not _is_root():
         return []
     uid = sandbox_uid()
-    return ['setpriv', '--reuid=%d' % uid, '--regid=%d' % uid,
+    return ['setpriv', '--reuid=%d' % uid, '--regid=%d' % SANDBOX_GID,
             '--clear-groups', '--no-new-privs', '--']
 
 
@@ -222,55 +225,74 @@ def compile_limits(memory_mb, file_mb):
 
 def compile_command(argv, build_dir, cache_dir=None):
     """(command line, working directory) that run the compiler `argv` on the
-    files of `build_dir`. With bubblewrap, the compiler sees only /usr and
-    build_dir (read-write, as /build, its working directory): a student's
-    #include of a grader's file finds nothing. Without namespaces, it runs in
-    build_dir as the sandbox's unprivileged user (build_dir must be that
-    user's: compile_dir()), never as root. What a student's code may hold
-    keeps the compiler from naming any other file in either case
-    (tools/compile_wall.py)."""
+    files of `build_dir` (made by compile_dir()). A compile of a student's
+    code never runs as root: a root grader runs it as the sandbox's
+    unprivileged user, in either mode. With bubblewrap, the compiler also
+    sees only /usr, build_dir (read-write, as /build, its working directory)
+    and the compiler cache: a student's #include of a grader's file would
+    find nothing. Without namespaces it runs in build_dir as that user. In
+    both, what a student's code may hold keeps the compiler from naming any
+    file (tools/compile_wall.py)."""
     kind = isolation()
-    if kind == 'unprivileged user':
+    if kind != 'bubblewrap':
         return _drop_privileges() + argv, build_dir
-    if kind == 'none':
-        return argv, build_dir
-    args = ['bwrap'] + BWRAP_COMMON + NO_INIT + [
+    args = _drop_privileges() + ['bwrap'] + BWRAP_COMMON + NO_INIT + [
         '--ro-bind', '/usr', '/usr', '--symlink', 'usr/bin', '/bin',
         '--symlink', 'usr/lib', '/lib', '--symlink', 'usr/lib64', '/lib64',
         '--tmpfs', '/tmp', '--bind', build_dir, '/build', '--chdir', '/build']
     if cache_dir:
         args += ['--bind', cache_dir, '/ccache', '--setenv', 'CCACHE_DIR', '/ccache',
-                 '--setenv', 'CCACHE_NOHASHDIR', '1']
+                 '--setenv', 'CCACHE_NOHASHDIR', '1', '--setenv', 'CCACHE_UMASK', '007']
     return args + argv, None
 
 
-def compiles_share_a_cache():
-    """Whether compiles of students' code may share a compiler cache. Not as
-    the unprivileged user: its compiles could not write the grader's cache
-    without being able to write it all; they go without (a worker of the
-    book's chapters compiles in seconds)."""
-    return isolation() != 'unprivileged user'
+def compile_cache(path):
+    """The compiler cache that compiles of students' code share, or None.
+    With bubblewrap, path, which every sandbox user may write through the
+    sandbox's group, and which nothing but the sandboxed compiler sees. Not
+    without namespaces: there the sandbox's user would reach it outside any
+    sandbox, and could rewrite what other compiles take from it; its compiles
+    go without (a worker of the book's chapters compiles in seconds)."""
+    if isolation() != 'bubblewrap' or not shutil.which('ccache'):
+        return None
+    os.makedirs(path, exist_ok=True)
+    if _is_root():
+        info = os.stat(path)
+        if info.st_gid != SANDBOX_GID or info.st_mode & 0o7777 != 0o2770:
+            # Once, and over what a compile as root left here before.
+            for top, dirs, files in os.walk(path):
+                for name in dirs + files:
+                    os.lchown(os.path.join(top, name), -1, SANDBOX_GID)
+                for name in dirs:
+                    os.chmod(os.path.join(top, name), 0o2770)
+                for name in files:
+                    full = os.path.join(top, name)
+                    if not os.path.islink(full):
+                        os.chmod(full, 0o660)
+            os.chown(path, 0, SANDBOX_GID)
+            os.chmod(path, 0o2770)
+    return path
 
 
 def compile_dir(prefix, parent):
-    """A new directory for a compile of a student's code: in parent, or,
-    where compiles run as the unprivileged user, in the temporary directory
-    (parent, the grader's cache, is closed to that user), made that user's by
-    hand_over() once the grader has written its files."""
-    if isolation() == 'unprivileged user':
+    """A new directory for a compile of a student's code: in parent (the
+    grader's cache), or, where compiles run as the sandbox's user, in the
+    temporary directory, since the cache holds what that user must not read
+    (judges, verdicts); hand_over() then makes it that user's."""
+    if _is_root() and isolation() != 'none':
         return tempfile.mkdtemp(prefix=prefix)
     return tempfile.mkdtemp(prefix=prefix, dir=parent)
 
 
 def hand_over(path):
     """Makes the tree at path the sandbox user's, where compiles run as it."""
-    if isolation() != 'unprivileged user' or not _is_root():
+    if not _is_root() or isolation() == 'none':
         return
     uid = sandbox_uid()
     for top, dirs, files in os.walk(path):
         for name in dirs + files:
-            os.lchown(os.path.join(top, name), uid, uid)
-    os.lchown(path, uid, uid)
+            os.lchown(os.path.join(top, name), uid, SANDBOX_GID)
+    os.lchown(path, uid, SANDBOX_GID)
 
 
 def protect(paths):

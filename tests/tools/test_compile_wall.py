@@ -67,6 +67,23 @@ class ScanTest(unittest.TestCase):
                      '<:<:gnu::used:>:> int q;'):
             self.assertRefused(code)
 
+    def test_what_reaches_the_assembler_through_a_macro(self):
+        # glibc's __REDIRECT makes an asm label of its third argument,
+        # __STRING stringizes, __glibc_macro_warning1 makes a _Pragma.
+        for code in ('extern int __REDIRECT(f, (void), x;.incbin "y");',
+                     'auto s = __STRING(x);', '__glibc_macro_warning1(GCC error "x")',
+                     'int _Reserved = 0;'):
+            self.assertRefused(code, 'reserved name')
+        for digraph in ('<%', '%>', ':>'):
+            self.assertRefused('int x %s' % digraph, 'digraph')
+
+    def test_brackets_balance(self):
+        for code in ('assert((', '))); {', '} } extern int f();', 'f(a[0)];'):
+            self.assertIsNotNone(compile_wall.scan([code]).unbalanced, code)
+        for code in ('f((a), [&] { return b[0]; });', '{ int x = (1); }',
+                     'const char *s = "((("; // )'):
+            self.assertIsNone(compile_wall.scan([code]).unbalanced, code)
+
     def test_what_changes_how_the_book_is_read(self):
         self.assertRefused('int a = 1; \\', 'line splice')
         self.assertRefused('int a = 1; \\  ', 'line splice')
@@ -101,7 +118,10 @@ class ScanTest(unittest.TestCase):
         paths = sorted(glob.glob(os.path.join(tg.ROOT, 'chapters', '[0-9][0-9]-*.md')))
         book = exercises.Book(paths, tests=False)
         for chapter in book.chapters:
-            self.assertEqual(compile_wall.check(chapter, chapter, str), [], chapter.path)
+            for exercise in chapter.exercises + [None]:
+                mine = set(exercise.fragments) if exercise else set()
+                self.assertEqual(compile_wall.check(chapter, chapter, str, mine), [],
+                                 chapter.path)
             # and no solution region of the book holds any of it: a student
             # who writes what the book writes is never refused.
             for region in chapter.regions:
@@ -127,19 +147,104 @@ def incbin_leak(files):
     return '\n'.join(lines)
 
 
+# glibc's __REDIRECT gives a declaration an asm label of its own text, which
+# the compiler copies into the assembly, where `;` starts a new statement:
+# an .incbin. GCC drops the label of a declaration inside a template
+# function, so the region first closes the book's loop and function (and
+# opens a dummy template that takes the book's rest). Found by a red team.
+REDIRECT = r"""lrtLeak(b);
+}
+}
+extern int __REDIRECT(lrtReadFn, (void), abort;.pushsection .rodata;.globl lrtFileData;lrtFileData:;.incbin "src/lrt/core/geometry.h";.byte 0;.popsection;call abort);
+extern const char __REDIRECT(lrtFile, [1], lrtFileData);
+inline void lrtLeak(const Bounds3<float> &box) {
+    if (box.pMin.x == 12345.f) lrtReadFn();
+    std::string lrtText(lrtFile);
+    throw std::runtime_error(lrtText.substr(lrtText.find("Compute the union"), 3000));
+}
+template <typename T>
+bool lrtRest(const Bounds3<T> &b, const Ray &ray, Float *hitt0, Float *hitt1) {
+    Float t0 = 0, t1 = 0;
+    for (int i = 0; i < 3; ++i) {
+        Float invD = 0;
+        int isNeg = 0;"""
+
+
+def in_region(fragment, code):
+    return lambda text: tg.inject(text, fragment, code)
+
+
+# Each attack: (the fragment whose exercise it is graded as, the chapter).
 ATTACKS = {
     # The book's headers as the compiler sees them: ex-5.10 and ex-5.11 in
     # slabtest.h, a later assignment's ex-2.12 to ex-2.14 in geometry.h.
-    'incbin': incbin_leak(['src/lrt/core/slabtest.h', 'src/lrt/core/geometry.h']),
+    'incbin': (tg.F9, in_region(tg.F9, incbin_leak(['src/lrt/core/slabtest.h',
+                                                    'src/lrt/core/geometry.h']))),
+    'redirect': (tg.F9, in_region(tg.F9, REDIRECT)),
     # The book's text after the region, up to the first `)"`, in a string.
-    'raw_string': 'static const char *lrtText = R"(',
+    'raw_string': (tg.F9, in_region(tg.F9, 'static const char *lrtText = R"(')),
     # The next exercise's fragment spliced in by the tangle, as a string.
-    'fragment_use': 'throw std::runtime_error(R"lrt(\n<<Widen tFar to cover rounding '
-                    'error>>\n)lrt");',
+    'fragment_use': (tg.F9, in_region(tg.F9, 'throw std::runtime_error(R"lrt(\n<<Widen tFar '
+                                              'to cover rounding error>>\n)lrt");')),
     # A name that the book's ex-5.11 code then uses (gamma(3)): the error is
     # at ex-5.11's line, and its diagnostic would quote it.
-    'diagnostic': 'int gamma = 0; (void)gamma;',
+    'diagnostic': (tg.F9, in_region(tg.F9, 'int gamma = 0; (void)gamma;')),
+    # ex-5.11's two regions: the first opens a macro call that the second
+    # closes, stringizing the book's ex-5.9 and ex-5.10 code between them
+    # (a red team's).
+    'across_regions': (tg.F11[0], lambda text: tg.replace_region(tg.replace_region(
+        text, tg.F11[1], 'throw std::runtime_error(__STRING(('), tg.F11[0],
+        ')));\n{ Float tNear = 0, tFar = 0;')),
 }
+
+
+class ChapterCheckTest(unittest.TestCase):
+    """check() on chapter 5 with a student's text in it, as the grader
+    composes it for ex-5.9."""
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix='lrt-compile-wall-check-')
+        cls.text = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
+        cls.book = cls.parse(cls.text)
+        cls.mine = {tg.F9}
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    @classmethod
+    def parse(cls, text):
+        path = os.path.join(cls.tmp, os.path.basename(tg.CHAPTER))
+        with open(path, 'w', encoding='utf-8') as f:
+            f.write(text)
+        return exercises.Book([path], tests=False).chapters[0]
+
+    def problems(self, text):
+        return compile_wall.check(self.book, self.parse(text), str, self.mine)
+
+    def test_the_students_region_may_hold_plain_code(self):
+        self.assertEqual(self.problems(tg.inject(self.text, tg.F9, 'int lrtMine = (1);')), [])
+
+    def test_a_region_balances_its_brackets(self):
+        found = self.problems(tg.inject(self.text, tg.F9, 'assert(('))
+        self.assertTrue(any('do not balance' in p for p in found), found)
+
+    def test_no_change_around_another_exercises_solution(self):
+        # <<Clip the parametric interval to slab i>> uses ex-5.11's <<Widen
+        # tFar...>>: with --allow-changes-outside-exercises its own lines
+        # must stay the book's, lest they wrap ex-5.11's code.
+        clip = 'Float tNear = (b[isNeg][i] - ray.o[i]) * invD;'
+        self.assertIn(clip, self.text)
+        found = self.problems(self.text.replace(clip, clip + ' assert(tNear == tNear);'))
+        self.assertTrue(any('<<Clip the parametric interval to slab i>> holds the book'
+                            in p for p in found), found)
+
+    def test_no_new_chunk_uses_another_exercises_solution(self):
+        extra = ('\n```cpp\n<<Mine>>=\nauto lrtText = std::string("x");\n'
+                 '<<Widen tFar to cover rounding error>>\n@\n```\n')
+        found = self.problems(self.text + extra)
+        self.assertTrue(any('is not in the book and uses <<Widen tFar' in p for p in found),
+                        found)
 
 
 class CompileLeakTest(unittest.TestCase):
@@ -150,25 +255,26 @@ class CompileLeakTest(unittest.TestCase):
         tg.copy_book(tg.ROOT, cls.copy)
         chapter = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
         cls.subs = os.path.join(cls.tmp, 'subs')
-        for name, code in ATTACKS.items():
-            tg.put_chapter(cls.subs, name, tg.inject(chapter, tg.F9, code))
+        for name, (_, attack) in ATTACKS.items():
+            tg.put_chapter(cls.subs, name, attack(chapter))
         tg.put_chapter(cls.subs, 'solution', chapter)
         cls.no_bwrap = tg.failing_bwrap(os.path.join(cls.tmp, 'no-bwrap'))
-        # What no grading may show: every line of the book's solutions but
-        # ex-5.9's own, long enough to be told from ordinary code.
+        # What no grading of an exercise may show: every line of the book's
+        # solutions but that exercise's own, long enough to be told from
+        # ordinary code, and not in the book's code outside the regions.
         paths = sorted(glob.glob(os.path.join(tg.ROOT, 'chapters', '0[2-5]-*.md')))
         book = exercises.Book(paths, tests=False)
-        owner = {f: e.id for c in book.chapters for e in c.exercises for f in e.fragments}
-        cls.e9 = owner[tg.F9]
+        cls.owner = {f: e.id for c in book.chapters for e in c.exercises for f in e.fragments}
         public = set()
         for c in book.chapters:
             inside = {r.line(i) for r in c.regions for i in range(r.begin, r.end + 1)}
             public |= {t.strip() for k in c.chunks for i, t in enumerate(k.body)
                        if k.line + 1 + i not in inside}
-        cls.secrets = sorted({t.strip() for c in book.chapters for r in c.regions
-                              if owner.get(r.chunk.name) != cls.e9
-                              for _, t in r.solution if len(t.strip()) >= 16} - public)
-        assert any('gamma(3)' in s for s in cls.secrets), cls.secrets
+        cls.secrets = {e: sorted({t.strip() for c in book.chapters for r in c.regions
+                                  if cls.owner.get(r.chunk.name) != e
+                                  for _, t in r.solution if len(t.strip()) >= 16} - public)
+                       for e in set(cls.owner.values())}
+        assert any('gamma(3)' in s for s in cls.secrets[cls.owner[tg.F9]])
 
     @classmethod
     def tearDownClass(cls):
@@ -186,19 +292,23 @@ class CompileLeakTest(unittest.TestCase):
              '--time-limit', str(tg.TIME_LIMIT)],
             cwd=self.copy, env=env, capture_output=True, text=True)
         self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
-        shown = proc.stdout + proc.stderr
-        for top, _, files in os.walk(out):
-            for name in files:
-                with open(os.path.join(top, name), encoding='utf-8', errors='replace') as f:
-                    shown += f.read()
-        for secret in self.secrets:
-            self.assertNotIn(secret, shown, 'the book\'s solution leaked (%s)' % mode)
-        for name in ATTACKS:
+        everyone = set.intersection(*map(set, self.secrets.values()))
+        for secret in everyone:
+            self.assertNotIn(secret, proc.stdout + proc.stderr)
+        for name, (fragment, _) in ATTACKS.items():
+            attacked = self.owner[fragment]
+            shown = ''
+            for top, _, files in os.walk(os.path.join(out, name)):
+                for file in files:
+                    shown += tg.read(os.path.join(top, file))
+            for secret in self.secrets[attacked]:
+                self.assertNotIn(secret, shown, 'the book\'s solution leaked to %s (%s)'
+                                 % (name, mode))
             results = read_json(os.path.join(out, name, 'results.json'))
             self.assertIn(mode, results['output'])
             for test in results['tests']:
                 ex = test['name'].split()[0]
-                if ex == self.e9:
+                if ex == attacked:
                     self.assertEqual(test['status'], 'failed', (name, test['name']))
                     self.assertIn('COMPILE-ERROR', test['output'], (name, test['name']))
                 else:

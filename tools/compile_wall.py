@@ -40,6 +40,7 @@ BANNED_WORDS = {'asm', '__asm', '__asm__', '_Pragma', '__attribute', '__attribut
 # A noweb use, as notangle finds it (anywhere on a line, C++ or not); `@<<`
 # is noweb's escape for a literal `<<`.
 USE = re.compile(r'(?<!@)<<(.+?)>>(?!=)')
+USE_LINE = re.compile(r'^\s*<<[^<>]+>>\s*$')
 MARKER = re.compile(r'^\s*// (BEGIN|END) (SOLUTION|STUB)\s*$')
 TRIGRAPH = re.compile(r"\?\?[=/'()!<>-]")
 SPLICE = re.compile(r'\\[ \t]*$')
@@ -254,6 +255,11 @@ def masked(chunk, mine):
         elif marker and chunk.name in mine:
             skip = marker.group(1) == 'BEGIN'
             lines.append(line.strip())
+        elif not skip and USE_LINE.match(line):
+            # A line that only uses a fragment may use another: that
+            # compiles other code there (consistent renames), and nothing
+            # on the line can take the fragment's text.
+            lines.append('<<>>')
         elif not skip:
             lines.append(line.rstrip())
     while lines and not lines[-1]:

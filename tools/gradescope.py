@@ -30,8 +30,8 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import course  # noqa: E402
 
-TOOLS = ['grade.py', 'grade_build.py', 'sandbox.py', 'exercises.py', 'exercise_filter.py',
-         'fragment_comments.py', 'tangle.py', 'course.py', 'deps.sh']
+TOOLS = ['grade.py', 'grade_build.py', 'sandbox.py', 'compile_wall.py', 'exercises.py',
+         'exercise_filter.py', 'fragment_comments.py', 'tangle.py', 'course.py', 'deps.sh']
 SCRIPTS = ['setup.sh', 'run_autograder']
 PLAN_NAME = 'course.toml'
 

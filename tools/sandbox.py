@@ -223,6 +223,22 @@ def compile_limits(memory_mb, file_mb):
     return args + ['--']
 
 
+# Where a root grader's compiles of students' code work, and the compiler
+# cache they share: a directory that the sandbox's users may pass through
+# (bwrap, running as one, must reach what it binds), whatever the grader's
+# cache and temporary directory allow. Its entries are the users' own.
+SANDBOX_DIR = '/var/tmp/lrt-sandbox'
+
+
+def _sandbox_dir():
+    os.makedirs(SANDBOX_DIR, exist_ok=True)
+    info = os.lstat(SANDBOX_DIR)
+    if not stat.S_ISDIR(info.st_mode) or info.st_uid != 0:
+        raise RuntimeError('%s is not a directory of root\'s' % SANDBOX_DIR)
+    os.chmod(SANDBOX_DIR, 0o711)
+    return SANDBOX_DIR
+
+
 def compile_command(argv, build_dir, cache_dir=None):
     """(command line, working directory) that run the compiler `argv` on the
     files of `build_dir` (made by compile_dir()). A compile of a student's
@@ -233,8 +249,7 @@ def compile_command(argv, build_dir, cache_dir=None):
     find nothing. Without namespaces it runs in build_dir as that user. In
     both, what a student's code may hold keeps the compiler from naming any
     file (tools/compile_wall.py)."""
-    kind = isolation()
-    if kind != 'bubblewrap':
+    if isolation() != 'bubblewrap':
         return _drop_privileges() + argv, build_dir
     args = _drop_privileges() + ['bwrap'] + BWRAP_COMMON + NO_INIT + [
         '--ro-bind', '/usr', '/usr', '--symlink', 'usr/bin', '/bin',
@@ -248,39 +263,34 @@ def compile_command(argv, build_dir, cache_dir=None):
 
 def compile_cache(path):
     """The compiler cache that compiles of students' code share, or None.
-    With bubblewrap, path, which every sandbox user may write through the
-    sandbox's group, and which nothing but the sandboxed compiler sees. Not
-    without namespaces: there the sandbox's user would reach it outside any
-    sandbox, and could rewrite what other compiles take from it; its compiles
-    go without (a worker of the book's chapters compiles in seconds)."""
+    With bubblewrap: for a root grader, one in SANDBOX_DIR that every sandbox
+    user may write through the sandbox's group and that nothing but the
+    sandboxed compiler sees; for another grader, path. Not without
+    namespaces: there the sandbox's user would reach it outside any sandbox,
+    and could rewrite what other compiles take from it; its compiles go
+    without (a worker of the book's chapters compiles in seconds)."""
     if isolation() != 'bubblewrap' or not shutil.which('ccache'):
         return None
+    if not _is_root():
+        os.makedirs(path, exist_ok=True)
+        return path
+    path = os.path.join(_sandbox_dir(), 'ccache')
     os.makedirs(path, exist_ok=True)
-    if _is_root():
-        info = os.stat(path)
-        if info.st_gid != SANDBOX_GID or info.st_mode & 0o7777 != 0o2770:
-            # Once, and over what a compile as root left here before.
-            for top, dirs, files in os.walk(path):
-                for name in dirs + files:
-                    os.lchown(os.path.join(top, name), -1, SANDBOX_GID)
-                for name in dirs:
-                    os.chmod(os.path.join(top, name), 0o2770)
-                for name in files:
-                    full = os.path.join(top, name)
-                    if not os.path.islink(full):
-                        os.chmod(full, 0o660)
-            os.chown(path, 0, SANDBOX_GID)
-            os.chmod(path, 0o2770)
+    info = os.stat(path)
+    if info.st_gid != SANDBOX_GID or info.st_mode & 0o7777 != 0o2770:
+        os.chown(path, 0, SANDBOX_GID)
+        os.chmod(path, 0o2770)
     return path
 
 
 def compile_dir(prefix, parent):
     """A new directory for a compile of a student's code: in parent (the
-    grader's cache), or, where compiles run as the sandbox's user, in the
-    temporary directory, since the cache holds what that user must not read
-    (judges, verdicts); hand_over() then makes it that user's."""
+    grader's cache), or, for a root grader, whose compiles run as the
+    sandbox's user, in SANDBOX_DIR, since the cache holds what that user
+    must not read (judges, verdicts); hand_over() then makes it that
+    user's."""
     if _is_root() and isolation() != 'none':
-        return tempfile.mkdtemp(prefix=prefix)
+        return tempfile.mkdtemp(prefix=prefix, dir=_sandbox_dir())
     return tempfile.mkdtemp(prefix=prefix, dir=parent)
 
 

@@ -328,30 +328,46 @@ class CompileLeakTest(unittest.TestCase):
         self.grade('unprivileged user', fallback=True)
 
 
-@unittest.skipUnless(os.geteuid() == 0, 'the fallback needs root')
-class FallbackCompileTest(unittest.TestCase):
-    """Without namespaces, a compile of a student's code runs as the sandbox's
-    unprivileged user, in a directory of that user's, never as root."""
+@unittest.skipUnless(os.geteuid() == 0, 'only a root grader has a user to drop to')
+class CompileUserTest(unittest.TestCase):
+    """A compile of a student's code runs as the sandbox's unprivileged user,
+    in a directory of that user's, never as root: in both modes."""
 
-    def test_compiles_run_as_the_sandbox_user(self):
+    def compile_as(self, fallback):
         tmp = tempfile.mkdtemp(prefix='lrt-compile-uid-')
         self.addCleanup(shutil.rmtree, tmp, ignore_errors=True)
-        no_bwrap = tg.failing_bwrap(os.path.join(tmp, 'no-bwrap'))
-        code = ('import os, subprocess, sys; sys.path.insert(0, %r); import sandbox\n'
-                'assert sandbox.isolation() == "unprivileged user", sandbox.isolation()\n'
+        env = dict(os.environ)
+        if fallback:
+            env['PATH'] = tg.failing_bwrap(os.path.join(tmp, 'no-bwrap')) + os.pathsep + \
+                env['PATH']
+        # The grader's cache lies where only root may enter, as a test's does.
+        os.chmod(tmp, 0o700)
+        code = ('import os, sys; sys.path.insert(0, %r); import sandbox, grade_build\n'
+                'print(sandbox.isolation())\n'
                 'work = sandbox.compile_dir("uid-", %r)\n'
                 'sandbox.hand_over(work)\n'
-                'argv, cwd = sandbox.compile_command(["sh", "-c", "id -u; touch made"], work)\n'
-                'out = subprocess.run(argv, cwd=cwd, capture_output=True, text=True)\n'
-                'print(out.stdout.strip(), os.stat(os.path.join(work, "made")).st_uid,'
-                ' sandbox.sandbox_uid())\n' % (os.path.join(tg.ROOT, 'tools'), tmp))
-        env = dict(os.environ, PATH=no_bwrap + os.pathsep + os.environ['PATH'])
+                'cache = sandbox.compile_cache(os.path.join(%r, "ccache"))\n'
+                'cmd, cwd = sandbox.compile_command(\n'
+                '    ["sh", "-c", "id -u; touch made"], work, cache)\n'
+                'code, out = grade_build.run(cmd, cwd)\n'
+                'print(code, out.split()[0], os.stat(os.path.join(work, "made")).st_uid,'
+                ' sandbox.sandbox_uid())\n'
+                'import shutil; shutil.rmtree(work)\n' % (os.path.join(tg.ROOT, 'tools'), tmp, tmp))
         proc = subprocess.run([sys.executable, '-c', code], env=env, capture_output=True,
                               text=True)
         self.assertEqual(proc.returncode, 0, proc.stderr)
-        ran_as, owner, uid = map(int, proc.stdout.split())
+        mode, rest = proc.stdout.split('\n', 1)
+        self.assertEqual(mode, 'unprivileged user' if fallback else 'bubblewrap')
+        status, ran_as, owner, uid = map(int, rest.split())
+        self.assertEqual(status, 0, proc.stdout)
         self.assertNotEqual(ran_as, 0)
         self.assertEqual((ran_as, owner), (uid, uid))
+
+    def test_bubblewrap(self):
+        self.compile_as(fallback=False)
+
+    def test_fallback_without_namespaces(self):
+        self.compile_as(fallback=True)
 
 
 if __name__ == '__main__':

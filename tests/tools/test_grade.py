@@ -360,14 +360,14 @@ def make_submissions(ns, root=ROOT):
     both11 = lambda text, code: inject(inject(text, F11[0], code), F11[1], code)  # noqa
     ns.broken = inject(sol, F9, 'this is not C++;')
     crashes = inject(sol, F9, '{ volatile int *p = nullptr; *p = 1; }')
-    crashes = inject(crashes, F10, '__builtin_abort();')
+    crashes = inject(crashes, F10, 'std::abort();')
     crashes = both11(crashes, 'throw std::runtime_error("student bug");')
     hangs = inject(sol, F9, 'for (volatile unsigned k = 0;; k = k + 1) {}')
     hangs = inject(hangs, F10, '{ char *big = new char[1ul << 40]; big[0] = 1; '
                    'delete[] big; }')
-    hangs = both11(hangs, '__builtin_exit(0);')
-    fake = inject(sol, F10, '__builtin_printf("[       OK ] Ex5_10.All\\n'
-                  '[  PASSED  ] 1 test.\\n");\n__builtin_exit(0);')
+    hangs = both11(hangs, 'std::exit(0);')
+    fake = inject(sol, F10, 'std::printf("[       OK ] Ex5_10.All\\n'
+                  '[  PASSED  ] 1 test.\\n");\nstd::exit(0);')
     # The reciprocal and its sign swapped: every check of ex-5.10 fails.
     wrong = replace_region(sol, F10, 'Float invD = -invDir[i];\nint isNeg = !dirIsNeg[i];')
     # Two exercises of three done: ex-5.10 left as the stub.

@@ -49,21 +49,27 @@ print(json.dumps({'status': status, 'left': left}))
 '''
 
 
-# The daemon, in system calls through ::syscall (the exercise's code can
-# include no header and write no asm; the book's headers declare ::syscall on
-# the way): once per worker, fork; the child leaves the session (setsid),
-# takes a name the test looks for (prctl PR_SET_NAME) and waits for ever.
+# The daemon, in system calls through libc's syscall (the exercise's code can
+# include no header and write no asm; syscall is declared after the book's
+# header, so the call is made one that argument-dependent lookup finds when
+# the template is instantiated, as tests/tools/attacks.py does): once per
+# worker, fork; the child leaves the session (setsid), takes a name the test
+# looks for (prctl PR_SET_NAME) and waits for ever. The worker's system call
+# filter now refuses the fork; the judge's reaping stands behind it.
 DAEMON = 'lrtdaemon'
 START_DAEMON = r"""{
   static int lrtStarted = 0;
   if (!lrtStarted) {
     lrtStarted = 1;
-    long lrtPid = ::syscall(57L);
+    auto lrtCall = [](auto global, long n, long a, long b) -> long {
+      return syscall(n, a, b, global);
+    };
+    long lrtPid = lrtCall(::div_t{}, 57L, 0, 0);
     if (lrtPid == 0) {
       static const char lrtName[16] = "%s";
-      ::syscall(112L);
-      ::syscall(157L, 15L, lrtName);
-      for (;;) ::syscall(34L);
+      lrtCall(::div_t{}, 112L, 0, 0);
+      lrtCall(::div_t{}, 157L, 15L, (long)lrtName);
+      for (;;) lrtCall(::div_t{}, 34L, 0, 0);
     }
   }
 }""" % DAEMON
@@ -91,7 +97,7 @@ class CrashInOneExerciseTest(unittest.TestCase):
         cls.points = {e: x['points'] for e, x in book.items() if x['chapter'] == '05'}
         cls.tmp = tempfile.mkdtemp(prefix='lrt-grade-crash-')
         book_chapter = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
-        for name, code in (('exits', '__builtin_exit(0);'), ('daemon', START_DAEMON)):
+        for name, code in (('exits', 'std::exit(0);'), ('daemon', START_DAEMON)):
             tg.put_chapter(cls.tmp, name, tg.inject(book_chapter, tg.F9, code))
         cls.no_bwrap = tg.failing_bwrap(os.path.join(cls.tmp, 'no-bwrap'))
 

@@ -13,12 +13,12 @@ isolation modes.
   mode of three submissions:
   - `solution`: the book's chapter: full marks.
   - `attacks`: ex-5.9's region, written as a student could (no asm, no
-    attributes, no directives), breaks out of its function to put code at
-    namespace scope, and runs its attacks at static-initialization time (an
-    inline variable's initializer) and in its first call: it reads the
+    attributes, no directives, no reserved names, its brackets balanced),
+    runs its attacks in its first call (a region cannot leave its function,
+    so no earlier; the probe covers static initializers): it reads the
     book's chapter (every solution) with stdio relative to the judge's
-    working directory, with ::syscall(openat) by absolute path, and through
-    popen("cat ..."); reads the hidden tests with ::syscall(open); copies
+    working directory, with syscall(openat) by absolute path, and through
+    popen("cat ..."); reads the hidden tests with syscall(open); copies
     the chapter out with std::system; writes a file with fopen; connects to
     a socket the test listens on; forks a child that renames itself, leaves
     the session and writes a file; and runs /bin/sh with execve (in a
@@ -247,39 +247,37 @@ class WallProbeTest(unittest.TestCase):
 # ---------------------------------------------------------------------------
 # Grading
 
-def breakout(namespace_code):
-    """ex-5.9's region (inside the loop of the first IntersectP) for code at
-    namespace scope: every call throws LrtWallReport(); the loop and the
-    function are closed, namespace_code follows (it defines LrtWallReport),
-    and a function template that nothing calls takes the rest of the chunk."""
+def in_region(code):
+    """ex-5.9's region (inside the loop of the first IntersectP) for code
+    that defines `lrtWallReport` (a std::string); every call throws it. A
+    region's brackets balance (tools/compile_wall.py), so the code stays in
+    the function: it runs at the first call, and no earlier (what a static
+    initializer could do, the probe above checks)."""
     return '\n'.join([
-        'const std::string &LrtWallReport();',
-        'throw std::runtime_error(LrtWallReport());',
-        '}',
-        'return false;',
-        '}',
-        namespace_code,
-        'template <typename T>',
-        'inline bool LrtWallRest(const Bounds3<T> &b, const Ray &ray, Float *hitt0,',
-        '                        Float *hitt1, Float t0, Float t1) {',
-        'for (int i = 0; i < 3; ++i) {',
+        code,
+        'throw std::runtime_error(lrtWallReport);',
         'Float invD = 0;',
         'int isNeg = 0;'])
 
 
-# The attacks, at namespace scope (within namespace lrt). Each notes what
-# it got, "name=result" and errno on failure, and what it read.
-ATTACKS = r'''
-extern "C" long syscall(long number, ...) noexcept;
-extern "C" int fork() noexcept;
-
-inline void LrtNote(std::string &report, const char *name, long result) {
+# The attacks, as statements of a template's body. libc's syscall is
+# declared after the book's header: a call that argument-dependent lookup
+# finds at instantiation reaches it (an argument of a global type, ::div_t,
+# through the `...`). Each attack notes what it got, "name=result" and errno
+# on failure, and what it read.
+ATTACKS = r"""
+auto lrtSys = [](long n, long a = 0, long b = 0, long c = 0) -> long {
+    auto call = [](auto global, long n, long a, long b, long c) -> long {
+        return syscall(n, a, b, c, global);
+    };
+    return call(::div_t{}, n, a, b, c);
+};
+auto lrtNote = [](std::string &report, const char *name, long result) {
     report += std::string(" ") + name + "=" + std::to_string(result);
     if (result < 0) report += "/e" + std::to_string(errno);
-}
-
+};
 // The solution lines of a chapter, which hold every exercise's answer.
-inline std::string LrtSolutions(const std::string &text) {
+auto lrtSolutions = [](const std::string &text) {
     std::string found;
     bool inside = false;
     for (size_t at = 0; at < text.size();) {
@@ -292,121 +290,113 @@ inline std::string LrtSolutions(const std::string &text) {
         at = end + 1;
     }
     return found;
-}
-
-inline std::string LrtReadAll(std::FILE *f) {
+};
+auto lrtReadAll = [](std::FILE *f) {
     std::string text;
     char block[4096];
     for (size_t n; (n = std::fread(block, 1, sizeof(block), f)) > 0;) text.append(block, n);
     return text;
-}
-
+};
 // A file's bytes through raw system calls: 0, or what a failed open returned.
-inline long LrtRawRead(long number, const char *path, std::string &text) {
-    long fd = number == 257 ? syscall(257, -100L, path, 0L) : syscall(2, path, 0L);
+auto lrtRawRead = [&](long number, const char *path, std::string &text) -> long {
+    long fd = number == 257 ? lrtSys(257, -100L, (long)path, 0L) : lrtSys(2, (long)path, 0L);
     if (fd < 0) return fd;
     char block[4096];
-    for (long n; (n = syscall(0, fd, block, long(sizeof(block)))) > 0;) text.append(block, n);
-    syscall(3, fd);
+    for (long n; (n = lrtSys(0, fd, (long)block, long(sizeof(block)))) > 0;)
+        text.append(block, n);
+    lrtSys(3, fd);
     return 0;
-}
-
-inline std::string LrtWallTry(const char *when) {
-    std::string report = std::string(" [") + when + "]";
+};
+static const std::string lrtWallReport = [&] {
+    const std::string when = "call";
+    std::string report = "ATTACKS: [" + when + "]";
     std::string text;
     // The book's chapter, from the judge's working directory (the
     // repository), with stdio.
     if (std::FILE *f = std::fopen("chapters/05-slab-test.md", "r")) {
-        report += " fopen-chapter=read: " + LrtSolutions(LrtReadAll(f));
+        report += " fopen-chapter=read: " + lrtSolutions(lrtReadAll(f));
         std::fclose(f);
     } else {
-        LrtNote(report, "fopen-chapter", -1);
+        lrtNote(report, "fopen-chapter", -1);
     }
     // The same by its absolute path, with openat.
-    long r = LrtRawRead(257, {repo} "/chapters/05-slab-test.md", text);
-    LrtNote(report, "openat-chapter", r);
-    if (r == 0) report += " read: " + LrtSolutions(text);
+    long r = lrtRawRead(257, {repo} "/chapters/05-slab-test.md", text);
+    lrtNote(report, "openat-chapter", r);
+    if (r == 0) report += " read: " + lrtSolutions(text);
     // The hidden tests, with open.
     text.clear();
-    r = LrtRawRead(2, {repo} "/tests/hidden/ch05/test_ex5_hidden.cpp", text);
-    LrtNote(report, "open-hidden", r);
+    r = lrtRawRead(2, {repo} "/tests/hidden/ch05/test_ex5_hidden.cpp", text);
+    lrtNote(report, "open-hidden", r);
     if (r == 0) report += " read: " + text.substr(0, 600);
     // Through a shell.
     if (std::FILE *p = ::popen("cat chapters/05-slab-test.md", "r")) {
-        report += " popen=read: " + LrtSolutions(LrtReadAll(p));
+        report += " popen=read: " + lrtSolutions(lrtReadAll(p));
         ::pclose(p);
     } else {
-        LrtNote(report, "popen", -1);
+        lrtNote(report, "popen", -1);
     }
     report += " system=" + std::to_string(std::system(
-        ("cp chapters/05-slab-test.md " {markers} "/system-copy-" + std::string(when)).c_str()));
+        ("cp chapters/05-slab-test.md " {markers} "/system-copy-" + when).c_str()));
     // A file outside.
-    std::FILE *out = std::fopen(({markers} "/fopen-" + std::string(when)).c_str(), "w");
-    LrtNote(report, "fopen-write", out ? 0 : -1);
+    std::FILE *out = std::fopen(({markers} "/fopen-" + when).c_str(), "w");
+    lrtNote(report, "fopen-write", out ? 0 : -1);
     if (out) {
         std::fputs("written by the worker\n", out);
         std::fclose(out);
     }
     // The network: a socket the test listens on, 127.0.0.1:{port}.
-    long s = syscall(41, 2L, 1L, 0L);
-    LrtNote(report, "socket", s);
+    long s = lrtSys(41, 2L, 1L, 0L);
+    lrtNote(report, "socket", s);
     if (s >= 0) {
         unsigned char address[16] = {2, 0, {port} >> 8, {port} & 255, 127, 0, 0, 1};
-        long c = syscall(42, s, address, 16L);
-        LrtNote(report, "connect", c);
-        if (c == 0) syscall(1, s, "leaked", 6L);
-        syscall(3, s);
+        long c = lrtSys(42, s, (long)address, 16L);
+        lrtNote(report, "connect", c);
+        if (c == 0) lrtSys(1, s, (long)"leaked", 6L);
+        lrtSys(3, s);
     }
     // A child that outlives the worker and writes a file.
-    long child = fork();
+    long child = lrtSys(57);
     if (child == 0) {
-        syscall(157, 15L, "{child}");          // prctl(PR_SET_NAME)
-        syscall(112);                          // setsid()
-        long fd = syscall(2, ({markers} "/forked-" + std::string(when)).c_str(), 01101L, 0644L);
-        if (fd >= 0) syscall(3, fd);
+        lrtSys(157, 15L, (long)"{child}");          // prctl(PR_SET_NAME)
+        lrtSys(112);                                // setsid()
+        long fd = lrtSys(2, (long)({markers} "/forked-" + when).c_str(), 01101L, 0644L);
+        if (fd >= 0) lrtSys(3, fd);
         long ts[2] = {30, 0};
-        syscall(35, ts, 0L);                   // 30 s
-        syscall(60, 0L);
+        lrtSys(35, (long)ts, 0L);                   // 30 s
+        lrtSys(60, 0L);
     }
-    LrtNote(report, "fork", child);
+    lrtNote(report, "fork", child);
     // Another program: in a second child if there can be one, else in place
     // of the worker (execve returns only if it failed).
-    long spawned = child > 0 ? long(fork()) : 0L;
+    long spawned = child > 0 ? lrtSys(57) : 0L;
     if (spawned == 0) {
-        std::string command = "cp chapters/05-slab-test.md " {markers} "/exec-copy-" +
-                              std::string(when);
+        std::string command = "cp chapters/05-slab-test.md " {markers} "/exec-copy-" + when;
         const char *argv[] = {"sh", "-c", command.c_str(), nullptr};
         const char *envp[] = {"PATH=/usr/bin:/bin", nullptr};
-        long e = syscall(59, "/bin/sh", argv, envp);
-        if (child > 0) syscall(60, 0L);
-        LrtNote(report, "execve", e);
+        long e = lrtSys(59, (long)"/bin/sh", (long)argv, (long)envp);
+        if (child > 0) lrtSys(60, 0L);
+        lrtNote(report, "execve", e);
     } else {
-        LrtNote(report, "spawned", spawned);
+        lrtNote(report, "spawned", spawned);
     }
     return report;
-}
+}();
+"""
 
-// At static-initialization time, before main.
-inline const std::string lrtWallAtStart = LrtWallTry("init");
+KILLER = r"""
+auto lrtSys = [](long n, long a = 0, long b = 0) -> long {
+    auto call = [](auto global, long n, long a, long b) -> long {
+        return syscall(n, a, b, global);
+    };
+    return call(::div_t{}, n, a, b);
+};
+static const std::string lrtWallReport = [&] {
+    long r = lrtSys(62, -1L, 9L);
+    return "ATTACKS: kill(-1, SIGKILL)=" + std::to_string(r) + "/e" +
+           std::to_string(r < 0 ? errno : 0);
+}();
+"""
 
-inline const std::string &LrtWallReport() {
-    static const std::string report = "ATTACKS:" + lrtWallAtStart + LrtWallTry("call");
-    return report;
-}
-'''
-
-KILLER = r'''
-extern "C" int kill(int pid, int signal) noexcept;
-
-inline const std::string &LrtWallReport() {
-    static const std::string report = [] {
-        int r = kill(-1, 9);
-        return "ATTACKS: kill(-1, SIGKILL)=" + std::to_string(r) + "/e" +
-               std::to_string(r < 0 ? errno : 0);
-    }();
-    return report;
-}
-'''
 
 # What each attack must have got with the filter, in both modes: EPERM.
 DENIED = ['fopen-chapter', 'openat-chapter', 'open-hidden', 'popen', 'fopen-write',
@@ -507,8 +497,8 @@ class WallGradingTest(unittest.TestCase):
                             ('port', str(cls.listener.port)), ('child', CHILD)):
             code = code.replace('{%s}' % name, value)
         tg.put_chapter(cls.subs, 'solution', chapter)
-        tg.put_chapter(cls.subs, 'attacks', tg.replace_region(chapter, tg.F9, breakout(code)))
-        tg.put_chapter(cls.subs, 'killer', tg.replace_region(chapter, tg.F9, breakout(KILLER)))
+        tg.put_chapter(cls.subs, 'attacks', tg.replace_region(chapter, tg.F9, in_region(code)))
+        tg.put_chapter(cls.subs, 'killer', tg.replace_region(chapter, tg.F9, in_region(KILLER)))
         cls.no_bwrap = tg.failing_bwrap(os.path.join(cls.tmp, 'no-bwrap'))
         cls.graded = {}
 
@@ -590,12 +580,13 @@ class WallGradingTest(unittest.TestCase):
         with self.subTest('every attack got EPERM'):
             for test in attacked:
                 # Thrown: the worker lived through every attack, and says
-                # what each got (a hidden test shows the message's start).
+                # what each got.
                 self.assertIn('**FAIL**', test['output'], test['name'])
-                self.assertIn('ATTACKS:', test['output'], test['name'])
+                # A hidden test shows nothing the code threw.
                 if test['visibility'] != 'visible':
                     continue
-                for when in ('init', 'call'):
+                self.assertIn('ATTACKS:', test['output'], test['name'])
+                for when in ('call',):
                     report = test['output'].split('[%s]' % when, 1)[1].split('[', 1)[0]
                     for name in DENIED:
                         self.assertIn(' %s=-1/e%d' % (name, EPERM), report,
@@ -615,7 +606,9 @@ class WallGradingTest(unittest.TestCase):
         with self.subTest('kill(-1, SIGKILL) got EPERM, and the worker lived'):
             for test in attacked:
                 self.assertIn('**FAIL**', test['output'], test['name'])
-                self.assertIn('kill(-1, SIGKILL)=-1/e%d' % EPERM, test['output'], test['name'])
+                if test['visibility'] == 'visible':
+                    self.assertIn('kill(-1, SIGKILL)=-1/e%d' % EPERM, test['output'],
+                                  test['name'])
         with self.subTest('the other exercises score the book\'s points'):
             self.check_others(results)
             others = sum(p for e, p in self.points.items() if e != self.attacked)

@@ -32,16 +32,19 @@ noweb use.
 The student's solution regions therefore hold plain C++ statements and
 declarations only, which is all an exercise asks for.
 """
+import os
 import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from exercises import MARKER, USE  # noqa: E402
 
 # Identifiers that reach the assembler or the preprocessor from C++ text.
 BANNED_WORDS = {'asm', '__asm', '__asm__', '_Pragma', '__attribute', '__attribute__',
                 '__declspec'}
-# A noweb use, as notangle finds it (anywhere on a line, C++ or not); `@<<`
-# is noweb's escape for a literal `<<`.
-USE = re.compile(r'(?<!@)<<(.+?)>>(?!=)')
+# A line that only uses a fragment. (USE, a noweb use as notangle finds it,
+# anywhere on a line, C++ or not, and MARKER are the exercises' own.)
 USE_LINE = re.compile(r'^\s*<<[^<>]+>>\s*$')
-MARKER = re.compile(r'^\s*// (BEGIN|END) (SOLUTION|STUB)\s*$')
 TRIGRAPH = re.compile(r"\?\?[=/'()!<>-]")
 SPLICE = re.compile(r'\\[ \t]*$')
 IDENTIFIER = re.compile(r'[A-Za-z_$\u0080-\U0010ffff][A-Za-z0-9_$\u0080-\U0010ffff]*')
@@ -248,12 +251,12 @@ def masked(chunk, mine):
     lines, skip, stub = [], False, False
     for line in chunk.body:
         marker = MARKER.match(line)
-        if marker and marker.group(2) == 'STUB':
-            stub = marker.group(1) == 'BEGIN'
+        if marker and marker.group(3) == 'STUB':
+            stub = marker.group(2) == 'BEGIN'
         elif stub:
             continue
         elif marker and chunk.name in mine:
-            skip = marker.group(1) == 'BEGIN'
+            skip = marker.group(2) == 'BEGIN'
             lines.append(line.strip())
         elif not skip and USE_LINE.match(line):
             # A line that only uses a fragment may use another: that

@@ -161,6 +161,27 @@ def inject(text, fragment, code):
     return '\n'.join(lines)
 
 
+def chapter5():
+    """(owner, points): the exercise of each fragment of the book, and the
+    points of chapter 5's exercises, from the book."""
+    book = book_exercises()
+    owner = {f: e for e, x in book.items() for f in x['fragments']}
+    return owner, {e: x['points'] for e, x in book.items() if x['chapter'] == '05'}
+
+
+def processes_named(name):
+    """The pids of the processes whose name (comm) is name."""
+    found = []
+    for pid in filter(str.isdigit, os.listdir('/proc')):
+        try:
+            with open('/proc/%s/comm' % pid) as f:
+                if f.read().strip() == name:
+                    found.append(pid)
+        except OSError:
+            pass
+    return found
+
+
 def failing_bwrap(directory):
     """directory, made to hold a `bwrap` that fails as it does where a
     container forbids namespaces: first on PATH, it makes the grader fall back

@@ -77,24 +77,14 @@ START_DAEMON = r"""{
 
 def daemons():
     """The pids of the daemons that are still there."""
-    found = []
-    for pid in filter(str.isdigit, os.listdir('/proc')):
-        try:
-            with open('/proc/%s/comm' % pid) as f:
-                if f.read().strip() == DAEMON:
-                    found.append(pid)
-        except OSError:
-            pass
-    return found
+    return tg.processes_named(DAEMON)
 
 
 class CrashInOneExerciseTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        book = tg.book_exercises()
-        owner = {f: e for e, x in book.items() for f in x['fragments']}
+        owner, cls.points = tg.chapter5()
         cls.crashing = owner[tg.F9]
-        cls.points = {e: x['points'] for e, x in book.items() if x['chapter'] == '05'}
         cls.tmp = tempfile.mkdtemp(prefix='lrt-grade-crash-')
         book_chapter = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
         for name, code in (('exits', 'std::exit(0);'), ('daemon', START_DAEMON)):

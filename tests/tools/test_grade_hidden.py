@@ -121,10 +121,8 @@ def number(n):
 class HiddenInputsTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        book = tg.book_exercises()
-        owner = {f: e for e, x in book.items() for f in x['fragments']}
+        owner, cls.points = tg.chapter5()
         cls.target = owner[tg.F10]
-        cls.points = {e: x['points'] for e, x in book.items() if x['chapter'] == '05'}
         cls.tmp = tempfile.mkdtemp(prefix='lrt-grade-hidden-')
         cls.copy = os.path.join(cls.tmp, 'repo')
         tg.copy_book(tg.ROOT, cls.copy)

@@ -403,18 +403,6 @@ DENIED = ['fopen-chapter', 'openat-chapter', 'open-hidden', 'popen', 'fopen-writ
           'socket', 'fork', 'execve']
 
 
-def processes_named(name):
-    found = []
-    for pid in filter(str.isdigit, os.listdir('/proc')):
-        try:
-            with open('/proc/%s/comm' % pid) as f:
-                if f.read().strip() == name:
-                    found.append(pid)
-        except OSError:
-            pass
-    return found
-
-
 def strings(value):
     """Every string in a JSON value, keys too."""
     if isinstance(value, str):
@@ -461,10 +449,8 @@ class WallGradingTest(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        book = tg.book_exercises()
-        owner = {f: e for e, x in book.items() for f in x['fragments']}
+        owner, cls.points = tg.chapter5()
         cls.attacked = owner[tg.F9]
-        cls.points = {e: x['points'] for e, x in book.items() if x['chapter'] == '05'}
         chapter = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
         # The lines the feedback must never show: the book's solutions of the
         # exercises not attacked, and the hidden tests' lines (and the
@@ -548,7 +534,7 @@ class WallGradingTest(unittest.TestCase):
                 tg.tree_files(self.copy, skipped=()) + tg.tree_files(self.subs, skipped=()))),
             'markers': sorted(os.listdir(self.markers)),
             'connections': list(self.listener.connections),
-            'processes': processes_named(CHILD)}
+            'processes': tg.processes_named(CHILD)}
         self.graded[mode] = graded
         return graded
 

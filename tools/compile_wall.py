@@ -334,11 +334,14 @@ def check(reference, composed, rename, mine):
                 problems.append('%s: <<%s>> holds the book\'s solution of another exercise '
                                 '(itself or through the fragments it uses): it may change in '
                                 'your exercise\'s regions only' % (where(0), chunk.name))
-        elif original is None:
+        elif chunk.name not in secret:
+            # A chunk that in the book holds no other exercise's solution
+            # (or is not in the book) may not come to use one: it could
+            # take it into brackets of its own (an assert's argument).
             used = [m.group(1) for line in chunk.body for m in USE.finditer(line)
                     if m.group(1) in secret]
             if used:
-                problems.append('%s: <<%s>> is not in the book and uses <<%s>>, which holds '
-                                'the book\'s solution of another exercise'
-                                % (where(0), chunk.name, used[0]))
+                problems.append('%s: <<%s>> uses <<%s>>, which holds the book\'s solution of '
+                                'another exercise; the book\'s <<%s>> does not'
+                                % (where(0), chunk.name, used[0], chunk.name))
     return problems

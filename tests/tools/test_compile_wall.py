@@ -243,8 +243,18 @@ class ChapterCheckTest(unittest.TestCase):
         extra = ('\n```cpp\n<<Mine>>=\nauto lrtText = std::string("x");\n'
                  '<<Widen tFar to cover rounding error>>\n@\n```\n')
         found = self.problems(self.text + extra)
-        self.assertTrue(any('is not in the book and uses <<Widen tFar' in p for p in found),
-                        found)
+        self.assertTrue(any('<<Mine>> uses <<Widen tFar' in p for p in found), found)
+
+    def test_no_book_chunk_comes_to_use_another_exercises_solution(self):
+        # A red team's: a chunk that holds no solution wraps one in brackets
+        # of its own, an assert's argument, whose text would be in the binary.
+        report = '<<Report the parametric interval of the hit>>='
+        self.assertIn(report, self.text)
+        found = self.problems(self.text.replace(report, report + '\nassert([&] {\n'
+                                                '<<Widen tFar to cover rounding error>>\n'
+                                                'return true; }());'))
+        self.assertTrue(any('<<Report the parametric interval of the hit>> uses <<Widen tFar'
+                            in p for p in found), found)
 
 
 class CompileLeakTest(unittest.TestCase):

@@ -61,7 +61,9 @@ CALL_SOURCES = ['tests/calls/core.h', 'tests/calls/calls.h', 'tests/calls/worker
 # system-call filter before the C library, or any of the student's code, runs
 # (the student's code can run at static-initialization time), then jumps to
 # the C library's _start.
-WALL_LINK = ['obj/wall.o', '-Wl,-e,lrt_wall_entry']
+WALL_LINK = ['obj/wall.o', '-Wl,-e,lrt_wall_entry',
+             # files that calls give in memory (tests/calls/worker.cpp)
+             '-Wl,--wrap=fopen']
 
 
 class BuildError(Exception):

@@ -33,6 +33,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -280,6 +281,15 @@ inline Handle Keep(std::shared_ptr<void> object) {
 #endif
     return h;
 }
+#ifdef LRT_WORKER
+// Files that a call gives the code it calls, by path, in memory: the worker
+// may open no file (its system-call filter, tests/calls/wall.cpp), so its
+// link routes fopen() to these first (worker.cpp, -Wl,--wrap=fopen).
+inline std::map<std::string, std::string> &MemoryFiles() {
+    static std::map<std::string, std::string> files;
+    return files;
+}
+#endif
 template <typename T>
 T &Find(const Handle &h) {
     void *found = h.local.get();

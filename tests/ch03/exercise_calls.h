@@ -217,12 +217,22 @@ inline MeshHit Nearest(const std::vector<std::shared_ptr<Shape>> &shapes,
 }
 
 // Writes `bytes` to a file called `name` in a new directory of the
-// temporary directory, passes its path to `use`, and removes both.
+// temporary directory, passes its path to `use`, and removes both. In the
+// worker, which may open no file, the file is one in memory
+// (calls::MemoryFiles()) that fopen() finds by its path.
 template <typename F>
 auto WithFile(const std::string &name, const std::string &bytes, F &&use) {
     if (name.empty() || name.find('/') != std::string::npos || name == "." ||
         name == "..")
         throw std::invalid_argument("not a plain file name: \"" + name + "\"");
+#ifdef LRT_WORKER
+    struct Forget {
+        std::string path;
+        ~Forget() { calls::MemoryFiles().erase(path); }
+    } forget{"/lrt-ply-memory/" + name};
+    calls::MemoryFiles()[forget.path] = bytes;
+    return use(forget.path);
+#else
     const char *tmp = std::getenv("TMPDIR");
     std::string pattern =
         std::string(tmp && *tmp ? tmp : "/tmp") + "/lrt-ply-XXXXXX";
@@ -242,6 +252,7 @@ auto WithFile(const std::string &name, const std::string &bytes, F &&use) {
     if (f && std::fclose(f) != 0) ok = false;
     if (!ok) throw std::runtime_error("cannot write " + path);
     return use(path);
+#endif
 }
 
 }  // namespace detail

@@ -225,6 +225,14 @@ def literal(text, begin, quote, raw, result, token, line_at):
     return None
 
 
+# What a solution region may hold, as the grader says it to a student whose
+# region is refused.
+RULES = ('a solution region holds C++ statements and declarations only, its brackets '
+         'balanced; no preprocessing directive, `asm`, attribute, `_Pragma`, name reserved '
+         'to the compiler (`__x`, `_X`), line splice, trigraph or digraph, and no comment or '
+         'literal left open or holding a fragment use')
+
+
 def secret_chunks(reference, mine):
     """Names of the chunks of `reference` whose text holds a solution region
     of an exercise other than the one of fragments `mine`, themselves or
@@ -317,14 +325,14 @@ def check(reference, composed, rename, mine):
         # Brackets: the book's chunks and regions each balance theirs, so
         # that no code around a region or a fragment use can take it into a
         # macro's argument.
-        for region in chunk.regions:
-            inner = scan(chunk.body[region.begin + 1:region.end]).unbalanced
-            if inner is not None:
-                problems.append('%s: the brackets of the solution region in <<%s>> do not '
-                                'balance (`%s`): a region opens and closes its own'
-                                % (where(region.begin + 1 + inner[0]), chunk.name, inner[1]))
-        if found.unbalanced is not None and not any(
-                scan(chunk.body[r.begin + 1:r.end]).unbalanced for r in chunk.regions):
+        unbalanced_regions = [(r, inner) for r in chunk.regions
+                              for inner in [scan(chunk.body[r.begin + 1:r.end]).unbalanced]
+                              if inner is not None]
+        for region, inner in unbalanced_regions:
+            problems.append('%s: the brackets of the solution region in <<%s>> do not '
+                            'balance (`%s`): a region opens and closes its own'
+                            % (where(region.begin + 1 + inner[0]), chunk.name, inner[1]))
+        if found.unbalanced is not None and not unbalanced_regions:
             problems.append('%s: the brackets of <<%s>> do not balance (`%s`)'
                             % (where(found.unbalanced[0]), chunk.name, found.unbalanced[1]))
         # Where a student may change code outside the regions, no change may

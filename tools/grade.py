@@ -574,9 +574,7 @@ def run_judge(args, judge, worker, results, secret):
         # sandbox has no namespaces. The judge sets GoogleTest's shuffle seed
         # from it itself (tests/calls/judge.cpp).
         secret_file = os.path.join(tmp, 'secret')
-        with open(os.open(secret_file, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600),
-                  'w') as f:
-            f.write('%d\n' % secret)
+        write_private(secret_file, '%d\n' % secret)
         deadline = time.monotonic() + args.exercise_time_limit
         for part in ('public', 'hidden'):
             tests = [r for r in results if r.hidden == (part == 'hidden')]
@@ -661,6 +659,13 @@ def first_line(text):
 def fence_safe(text):
     """Text that cannot close the Markdown code block it is shown in."""
     return text.replace('`' * 3, '` ` `')
+
+
+def write_private(path, text):
+    """Writes text to a new file at path that only this user may read (a
+    secret: a file of that name already there is an error, not followed)."""
+    with open(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600), 'w') as f:
+        f.write(text)
 
 
 def atomic_write(path, text):
@@ -1082,12 +1087,8 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
                 for r in mine:
                     r.status = 'COMPILE-ERROR'
                     r.message = '%s is not compiled: %s' % (exercise.id, '\n'.join(refused))
-                report.notes += ['', '**%s is not compiled** (its tests score 0): a solution '
-                                 'region holds C++ statements and declarations only, its '
-                                 'brackets balanced; no preprocessing directive, `asm`, '
-                                 'attribute, `_Pragma`, name reserved to the compiler '
-                                 '(`__x`, `_X`), line splice, trigraph or digraph, and no '
-                                 'comment or literal left open or holding a fragment use:' % exercise.id, '```',
+                report.notes += ['', '**%s is not compiled** (its tests score 0): %s:'
+                                 % (exercise.id, compile_wall.RULES), '```',
                                  fence_safe('\n'.join(refused)), '```']
                 report.write()
                 continue
@@ -1287,8 +1288,7 @@ def private_flags(flags):
     directory = tempfile.mkdtemp(prefix='lrt-batch-')
     atexit.register(shutil.rmtree, directory, True)
     path = os.path.join(directory, 'flags')
-    with open(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600), 'w') as f:
-        f.write(''.join(flag + '\n' for flag in flags))
+    write_private(path, ''.join(flag + '\n' for flag in flags))
     return path
 
 

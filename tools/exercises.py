@@ -42,7 +42,9 @@ NEAR_MARKER = re.compile(r'^\s*/[/*]\s*(BEGIN|END)\s*(SOLUTION|STUB)', re.IGNORE
 PLACEHOLDER = re.compile(r'^(\s*)// NOT IMPLEMENTED\s*$')
 DEFINITION = re.compile(r'^<<(.+)>>=\s*$')
 CHUNK_END = re.compile(r'^@(\s|$)')
-USE = re.compile(r'(?<!@)<<(.+?)>>')
+# A use's name ends at the first `>>`, as notangle reads it: `<<>> <<X>>` is an
+# empty use and a use of X, not one use of `>> <<X`.
+USE = re.compile(r'(?<!@)<<(.*?)>>')
 FENCE = re.compile(r'^(```|~~~)')
 HEADER = re.compile(r'^(#{1,6})\s+(.*?)\s*$')
 HEADER_ATTRIBUTES = re.compile(r'\s*\{([^{}]*)\}\s*$')

@@ -245,6 +245,14 @@ class ChapterCheckTest(unittest.TestCase):
         found = self.problems(self.text + extra)
         self.assertTrue(any('<<Mine>> uses <<Widen tFar' in p for p in found), found)
 
+    def test_uses_are_read_as_noweb_reads_them(self):
+        # A third red team's: `<<>>` first made the rest of the line one use
+        # of a fragment named `>> <<Widen tFar...`, which holds no solution.
+        extra = ('\n```cpp\n<<Mine>>=\nauto lrtText = std::string("x");\n'
+                 '<<>> <<Widen tFar to cover rounding error>>\n@\n```\n')
+        found = self.problems(self.text + extra)
+        self.assertTrue(any('<<Mine>> uses <<Widen tFar' in p for p in found), found)
+
     def test_no_book_chunk_comes_to_use_another_exercises_solution(self):
         # A red team's: a chunk that holds no solution wraps one in brackets
         # of its own, an assert's argument, whose text would be in the binary.

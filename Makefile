@@ -7,14 +7,14 @@
 #   make test UPTO=05  chapters 1..5's tests against the code as of chapter 5
 #                   (UPTO=last: every test against the whole library)
 #   make book       only the PDF
-#   make html       the web edition, build/html/ (tools/html.mk)
+#   make html       the web edition, build/html/ (tools/make/html.mk)
 #   make tangle     refresh tangled/, the readable tangle that is committed
 #   make lint       check the chapters' noweb/Markdown format
-#   make bench      the BVH benchmark of Appendix A (tools/bench.mk): table + JSON
-#   make figures    render the book's figures into figures/ (tools/figures.mk);
+#   make bench      the BVH benchmark of Appendix A (tools/make/bench.mk): table + JSON
+#   make figures    render the book's figures into figures/ (tools/make/figures.mk);
 #                   make check-figures compares them with the committed ones
-#   make exercises  student and solution kits; more in tools/exercises.mk
-#   make grade SUBMISSION=path [OUT=dir]  grade a student's chapters (tools/grade.mk)
+#   make exercises  student and solution kits; more in tools/make/exercises.mk
+#   make grade SUBMISSION=path [OUT=dir]  grade a student's chapters (tools/make/grade.mk)
 #
 # Options: FLOAT=double (Float is double), SANITIZE=1 (ASan + UBSan build of
 # the tests), CHAPTERS="..." and BUILD=dir to build another set of chapters.
@@ -30,9 +30,9 @@ chapter_number = $(firstword $(subst -, ,$(notdir $(1))))
 NUMBERS := $(foreach c,$(CHAPTERS),$(call chapter_number,$(c)))
 LAST := $(lastword $(NUMBERS))
 PREFIXES := $(or $(CH),$(subst last,$(LAST),$(UPTO)),$(NUMBERS))
-ASOF = $(MAKE) --no-print-directory -f tools/asof.mk
+ASOF = $(MAKE) --no-print-directory -f tools/make/asof.mk
 export CHAPTERS BUILD FLOAT SANITIZE
-include tools/say.mk
+include tools/make/say.mk
 
 .PHONY: all deps lint tangle lib test book clean
 
@@ -68,14 +68,14 @@ $(BUILD)/deps.mk: FORCE
 # instead, which the checks renew only when a chapter, a test or a checker
 # changed, or a file was added or removed (the list of inputs, kept by cpif).
 LINT_INPUTS := $(CHAPTERS) $(sort $(wildcard tests/ch[0-9][0-9]/* tests/hidden/ch[0-9][0-9]/*))
-LINT = python3 tools/lint.py --book $(CHAPTERS) && \
-       python3 tools/exercises.py lint $(CHAPTERS)
+LINT = python3 tools/noweb/lint.py --book $(CHAPTERS) && \
+       python3 tools/exercises/markup.py lint $(CHAPTERS)
 LINTED := $(BUILD)/linted.stamp
 
 lint:
 	$(LINT)
 
-$(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/lint.py tools/exercises.py
+$(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/noweb/lint.py tools/exercises/markup.py
 	$(call say,LINT,the chapters and the names of their exercise tests)
 	$(Q)$(LINT)
 	@touch $@
@@ -87,7 +87,7 @@ $(BUILD)/lint-inputs.list: FORCE
 
 tangle: $(LINTED)
 	$(call say,TANGLE,tangled/)
-	$(Q)python3 tools/tangle.py --out tangled $(CHAPTERS)
+	$(Q)python3 tools/noweb/tangle.py --out tangled $(CHAPTERS)
 
 lib: $(LINTED)
 	$(Q)$(ASOF) ASOF=$(LAST) tangle
@@ -110,29 +110,29 @@ test: $(LINTED)
 	    $(ASOF) ASOF=$$n ONLY=$(CH) -j$(JOBS) tests; \
 	    bins+=($$($(ASOF) -s ASOF=$$n ONLY=$(CH) list-tests)); \
 	done; \
-	python3 tools/runtests.py --jobs $(JOBS) $(if $(FLOAT)$(SANITIZE),,$(if $(CH),$(addprefix \
+	python3 tools/testing/runtests.py --jobs $(JOBS) $(if $(FLOAT)$(SANITIZE),,$(if $(CH),$(addprefix \
 	    --python-tests ,$(PYTHON_TESTS_$(CH))),--python-tests tests/tools)) "$${bins[@]}"
 
 compile_commands.json: tangle
 	$(call say,GEN,$@)
-	$(Q)python3 tools/compile_commands.py --src tangled > $@
+	$(Q)python3 tools/compile/compile_commands.py --src tangled > $@
 
 book: $(BUILD)/book.pdf
 
-$(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/weave.sh tools/weave.lua \
-                   tools/fragments.lua tools/exercises.lua tools/preamble.tex \
-                   tools/tikz-preamble.tex \
-                   tools/highlight.theme tools/layout_check.py \
+$(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/book/weave.sh tools/book/weave.lua \
+                   tools/book/fragments.lua tools/book/exercises.lua tools/book/preamble.tex \
+                   tools/book/tikz-preamble.tex \
+                   tools/book/highlight.theme tools/book/layout_check.py \
                    $(wildcard figures/*) | $(LINTED)
 	$(call say,WEAVE,$@ (pandoc then pdflatex until the references settle))
-	$(Q)tools/weave.sh $(BUILD)/book book.md $(CHAPTERS)
+	$(Q)tools/book/weave.sh $(BUILD)/book book.md $(CHAPTERS)
 	$(Q)cp $(BUILD)/book/book.pdf $@
 
 clean:
 	rm -rf $(BUILD) compile_commands.json
 
-include tools/exercises.mk
-include tools/bench.mk
-include tools/figures.mk
-include tools/grade.mk
-include tools/html.mk
+include tools/make/exercises.mk
+include tools/make/bench.mk
+include tools/make/figures.mk
+include tools/make/grade.mk
+include tools/make/html.mk

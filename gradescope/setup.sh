@@ -20,7 +20,7 @@ flags=()
 [ -f grade_flags ] && flags+=(@grade_flags)
 # shellcheck disable=SC2206
 flags+=(${GRADE_FLAGS:-})
-python3 tools/grade.py --out "$warm/out" --quiet "${flags[@]}" "$warm/book"
+python3 tools/grading/grade.py --out "$warm/out" --quiet "${flags[@]}" "$warm/book"
 python3 - "$warm/out/results.json" <<'PY'
 import json, sys
 data = json.load(open(sys.argv[1]))

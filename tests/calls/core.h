@@ -370,7 +370,7 @@ void RunRounds(void (*body)());
 #ifndef LRT_JUDGE
 // In a course's student kit (docs/course.md), the stub of an exercise that a
 // later assignment sets says so: "Exercise ex-2.12 comes with a later
-// assignment: ..." (tools/exercises.py, LATER_STUB). A test that reaches such
+// assignment: ..." (tools/exercises/markup.py, LATER_STUB). A test that reaches such
 // a stub, through a call or in its own checks, can check nothing until then,
 // so `make test` skips it with that message instead of failing it. A call
 // throws it on as a Later, not a std::logic_error, so that no EXPECT_THROW of

@@ -1,7 +1,7 @@
 // The judge: one chapter's exercise tests, compiled with LRT_JUDGE and linked
 // with the book's code, whose exercise calls (calls.h) are answered by a
 // worker process that runs the student's code in a sandbox. The grader
-// (tools/grade.py) starts it as
+// (tools/grading/grade.py) starts it as
 //
 //   judge --lrt-worker=FILE --lrt-secret-file=FILE --lrt-tests-file=FILE
 //         --lrt-results=FILE [--lrt-call-timeout=S] [--lrt-worker-log=FILE]
@@ -111,7 +111,7 @@ double Now() {
 // fixed phrases; DETAIL (a signal, an exit status, a size, a message) the
 // code under test can choose, so where the grader must not show what the
 // code chose (a hidden test, whose worker saw the test's inputs and could
-// put them there), it shows "during Call: KIND" only (tools/grade.py,
+// put them there), it shows "during Call: KIND" only (tools/grading/grade.py,
 // shown_message, matches these words).
 const char *Kind(Status s) {
     switch (s) {

@@ -21,7 +21,7 @@
 // initializer of an inline variable or a template's static member in a
 // header, at static-initialization time), and a static glibc runs IFUNC
 // resolvers and constructors before that. So the worker's ELF entry point is
-// lrt_wall_entry below (`-Wl,-e,lrt_wall_entry`, tools/grade_build.py), in
+// lrt_wall_entry below (`-Wl,-e,lrt_wall_entry`, tools/grading/build.py), in
 // this translation unit, which holds no student code. It runs before the C
 // library has set up anything (no TLS, no errno, no IFUNCs resolved), so it
 // makes raw system calls and calls no library function, installs the filter,

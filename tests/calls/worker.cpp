@@ -100,7 +100,7 @@ std::string Serve(const std::string &message) {
 }
 
 // fopen() of the worker's objects, which its link routes here
-// (-Wl,--wrap=fopen, tools/grade_build.py): a path that a call gave in memory
+// (-Wl,--wrap=fopen, tools/grading/build.py): a path that a call gave in memory
 // (calls::MemoryFiles()) opens as a read-only stream of those bytes; any
 // other goes to the C library's fopen, which the system-call filter lets
 // open nothing.

@@ -4,7 +4,7 @@ into submissions and checks that none gains a point or changes a file.
 
 The code runs inside a function of the book (a solution region is a piece of
 a function body), where no header can be included and no `asm` written (the
-grader compiles neither, tools/compile_wall.py): it makes Linux system calls
+grader compiles neither, tools/grading/compile_wall.py): it makes Linux system calls
 through libc's `syscall` (x86-64 numbers), as an attacker who has read the
 grader would. Each
 attack runs once, the first time the region runs, and then throws: it solves

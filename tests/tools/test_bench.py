@@ -1,9 +1,9 @@
 """Tests of the benchmark of Appendix A, bench/bvhbench.cpp and its make rules
-(tools/bench.mk), as a user runs them: options that select only part of the
+(tools/make/bench.mk), as a user runs them: options that select only part of the
 benchmarks must give a clear message, never a crash; a configuration of
 compiler and flags builds the library and the program with them, in a
 directory of its own, and is named in the table and the JSON; an unknown
-compiler is a clear error; tools/bench_table.py turns the JSON of several
+compiler is a clear error; tools/bench/table.py turns the JSON of several
 configurations into one table.
 
 The program is built with `make bench-build` (the same rule `make` uses), in
@@ -35,7 +35,7 @@ def last_chapter_number():
 
 def has_benchmark():
     """Whether a chapter of this book writes the benchmark (a kit of the
-    chapters before the appendix has none: tools/bench.mk then builds nothing)."""
+    chapters before the appendix has none: tools/make/bench.mk then builds nothing)."""
     for path in glob.glob(os.path.join(ROOT, 'chapters', '[0-9][0-9]-*.md')):
         with open(path, encoding='utf-8') as f:
             if '\n<<bench/bvhbench.cpp>>=\n' in f.read():
@@ -206,7 +206,7 @@ class BenchConfigurationTest(unittest.TestCase):
 
 
 class BenchTableTest(unittest.TestCase):
-    """tools/bench_table.py --configurations: one row per JSON file."""
+    """tools/bench/table.py --configurations: one row per JSON file."""
 
     @staticmethod
     def record(version, mesh, triangles, speeds, ratios):
@@ -226,7 +226,7 @@ class BenchTableTest(unittest.TestCase):
                 with open(paths[-1], 'w', encoding='utf-8') as f:
                     json.dump(data, f)
             return subprocess.run(
-                [sys.executable, os.path.join(ROOT, 'tools', 'bench_table.py'),
+                [sys.executable, os.path.join(ROOT, 'tools', 'bench', 'table.py'),
                  '--configurations'] + paths, capture_output=True, text=True)
 
     def configuration(self, cxx, flags, speed, ratio=2.5, build_ms=10.0):
@@ -254,7 +254,7 @@ class BenchTableTest(unittest.TestCase):
 
     def test_rounds_of_a_configuration_give_one_row_of_medians(self):
         # Three rounds of g++ -O3 between two of g++ -O2, files interleaved as
-        # tools/bench_compare.py writes them; the ratio is the median of the
+        # tools/bench/compare.py writes them; the ratio is the median of the
         # rounds' ratios, not the ratio of the median speeds.
         r = self.run_table([self.configuration('g++', '-O2', 10, 2.0, 12),
                             self.configuration('g++', '-O3', 9, 2.2, 20),

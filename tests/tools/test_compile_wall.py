@@ -1,4 +1,4 @@
-"""What a compile of a student's code sees and shows (tools/compile_wall.py,
+"""What a compile of a student's code sees and shows (tools/grading/compile_wall.py,
 docs/grading.md): no submission gets the book's solution of another exercise,
 or of a later assignment, through the compiler.
 
@@ -28,10 +28,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import test_grade as tg  # noqa: E402
 
-sys.path.insert(0, os.path.join(tg.ROOT, 'tools'))
-import compile_wall  # noqa: E402
-import exercises  # noqa: E402
-import sandbox  # noqa: E402
+sys.path.insert(0, tg.ROOT)
+from tools.exercises import markup  # noqa: E402
+from tools.grading import compile_wall, sandbox  # noqa: E402
 
 
 def read_json(path):
@@ -116,7 +115,7 @@ class ScanTest(unittest.TestCase):
 
     def test_the_book_passes_its_own_check(self):
         paths = sorted(glob.glob(os.path.join(tg.ROOT, 'chapters', '[0-9][0-9]-*.md')))
-        book = exercises.Book(paths, tests=False)
+        book = markup.Book(paths, tests=False)
         for chapter in book.chapters:
             for exercise in chapter.exercises + [None]:
                 mine = set(exercise.fragments) if exercise else set()
@@ -217,7 +216,7 @@ class ChapterCheckTest(unittest.TestCase):
         path = os.path.join(cls.tmp, os.path.basename(tg.CHAPTER))
         with open(path, 'w', encoding='utf-8') as f:
             f.write(text)
-        return exercises.Book([path], tests=False).chapters[0]
+        return markup.Book([path], tests=False).chapters[0]
 
     def problems(self, text):
         return compile_wall.check(self.book, self.parse(text), str, self.mine)
@@ -281,7 +280,7 @@ class CompileLeakTest(unittest.TestCase):
         # solutions but that exercise's own, long enough to be told from
         # ordinary code, and not in the book's code outside the regions.
         paths = sorted(glob.glob(os.path.join(tg.ROOT, 'chapters', '0[2-5]-*.md')))
-        book = exercises.Book(paths, tests=False)
+        book = markup.Book(paths, tests=False)
         cls.owner = {f: e.id for c in book.chapters for e in c.exercises for f in e.fragments}
         public = set()
         for c in book.chapters:
@@ -304,7 +303,7 @@ class CompileLeakTest(unittest.TestCase):
         if fallback:
             env['PATH'] = self.no_bwrap + os.pathsep + env['PATH']
         proc = subprocess.run(
-            [sys.executable, os.path.join(self.copy, 'tools', 'grade.py'), '--batch',
+            [sys.executable, os.path.join(self.copy, 'tools', 'grading', 'grade.py'), '--batch',
              self.subs, '--out', out, '--chapters', '05', '--cache',
              os.path.join(self.tmp, 'cache-' + mode.replace(' ', '-')),
              '--time-limit', str(tg.TIME_LIMIT)],
@@ -360,7 +359,7 @@ class CompileUserTest(unittest.TestCase):
                 env['PATH']
         # The grader's cache lies where only root may enter, as a test's does.
         os.chmod(tmp, 0o700)
-        code = ('import os, sys; sys.path.insert(0, %r); import sandbox, grade_build\n'
+        code = ('import os, sys; sys.path.insert(0, %r); from tools.grading import sandbox, build as grade_build\n'
                 'print(sandbox.isolation())\n'
                 'work = sandbox.compile_dir("uid-", %r)\n'
                 'sandbox.hand_over(work)\n'
@@ -370,7 +369,7 @@ class CompileUserTest(unittest.TestCase):
                 'code, out = grade_build.run(cmd, cwd)\n'
                 'print(code, out.split()[0], os.stat(os.path.join(work, "made")).st_uid,'
                 ' sandbox.sandbox_uid())\n'
-                'import shutil; shutil.rmtree(work)\n' % (os.path.join(tg.ROOT, 'tools'), tmp, tmp))
+                'import shutil; shutil.rmtree(work)\n' % (tg.ROOT, tmp, tmp))
         proc = subprocess.run([sys.executable, '-c', code], env=env, capture_output=True,
                               text=True)
         self.assertEqual(proc.returncode, 0, proc.stderr)

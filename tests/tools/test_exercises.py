@@ -24,9 +24,8 @@ TOOLS = os.path.join(ROOT, 'tools')
 FIXTURE = os.path.join(HERE, 'exercises')
 CH1 = 'chapters/01-sums.md'
 CH2 = 'chapters/02-means.md'
-sys.path.insert(0, TOOLS)
-import exercises  # noqa: E402
-import exercise_kits  # noqa: E402
+sys.path.insert(0, ROOT)
+from tools.exercises import kits, markup  # noqa: E402
 
 
 def run(cmd, cwd=ROOT):
@@ -73,7 +72,7 @@ class Variant:
 
     def lint(self):
         chapters = sorted(os.listdir(self.path('chapters')))
-        return run(['python3', os.path.join(TOOLS, 'exercises.py'), 'lint'] +
+        return run(['python3', os.path.join(TOOLS, 'exercises', 'markup.py'), 'lint'] +
                    ['chapters/' + c for c in chapters], cwd=self.dir)
 
 
@@ -260,12 +259,12 @@ class LintTest(unittest.TestCase):
 
     def test_make_lint_runs_the_exercise_lint(self):
         result = run(['make', '-n', 'lint'])
-        self.assertIn('tools/exercises.py lint', result.stdout)
+        self.assertIn('tools/exercises/markup.py lint', result.stdout)
 
 
 class StudentEditionTest(unittest.TestCase):
     def student(self, chapter):
-        result = run(['python3', os.path.join(TOOLS, 'exercises.py'), 'student', chapter],
+        result = run(['python3', os.path.join(TOOLS, 'exercises', 'markup.py'), 'student', chapter],
                      cwd=FIXTURE)
         self.assertEqual(result.returncode, 0, result.stderr)
         return result.stdout
@@ -294,15 +293,15 @@ class StudentEditionTest(unittest.TestCase):
     def test_later_stub_message_is_the_one_make_test_skips_on(self):
         # tests/calls/core.h recognizes a later assignment's stub by its
         # words; the two must agree.
-        book = exercises.load([os.path.join(FIXTURE, CH1)], root=FIXTURE, tests=False)
-        message = exercises.stub_message(book.exercises[1], 'Clamp v to the range', True)
+        book = markup.load([os.path.join(FIXTURE, CH1)], root=FIXTURE, tests=False)
+        message = markup.stub_message(book.exercises[1], 'Clamp v to the range', True)
         self.assertEqual(message, 'Exercise ex-1.2 comes with a later assignment: leave '
                          '<Clamp v to the range> (Section 1.2, Clamping) as it is for now')
         core = read(os.path.join(ROOT, 'tests', 'calls', 'core.h'))
-        self.assertIn('" %s: "' % exercises.LATER_STUB, core)
+        self.assertIn('" %s: "' % markup.LATER_STUB, core)
 
     def test_stub_lines_fit_the_column(self):
-        lines = exercises.throw_lines(' ' * 12, 'Exercise ex-6.12 is not done yet: write <'
+        lines = markup.throw_lines(' ' * 12, 'Exercise ex-6.12 is not done yet: write <'
                                       + 'A very long fragment name ' * 5 + '"quoted" \\ '
                                       + 'x' * 100 + '>')
         self.assertTrue(all(len(l) <= 80 for l in lines), '\n'.join(lines))
@@ -317,22 +316,22 @@ class StudentEditionTest(unittest.TestCase):
         shutil.rmtree(os.path.join(tmp, 'tests', 'hidden'))
         for chapter in (CH1, CH2):
             write(os.path.join(tmp, chapter), self.student(chapter))
-        for tool in ('lint.py', 'exercises.py'):
-            cmd = ['python3', os.path.join(TOOLS, tool)] + (['lint'] if tool ==
-                                                            'exercises.py' else [])
+        for tool in (('noweb', 'lint.py'), ('exercises', 'markup.py')):
+            cmd = ['python3', os.path.join(TOOLS, *tool)] + (['lint'] if tool[0] ==
+                                                             'exercises' else [])
             result = run(cmd + [CH1, CH2], cwd=tmp)
-            self.assertEqual(result.returncode, 0, tool + ': ' + result.stderr)
+            self.assertEqual(result.returncode, 0, tool[1] + ': ' + result.stderr)
 
 
 class FilterTest(unittest.TestCase):
-    """tools/tangle.py runs tools/exercise_filter.py: no markers, no stubs."""
+    """tools/noweb/tangle.py runs tools/noweb/markup_filter.py: no markers, no stubs."""
 
     def tangle(self, chapter_dir, *options):
         out = tempfile.mkdtemp()
         self.addCleanup(shutil.rmtree, out)
         chapters = sorted('chapters/' + c for c in os.listdir(os.path.join(chapter_dir,
                                                                            'chapters')))
-        result = run(['python3', os.path.join(TOOLS, 'tangle.py'), '--out', out] +
+        result = run(['python3', os.path.join(TOOLS, 'noweb', 'tangle.py'), '--out', out] +
                      list(options) + chapters, cwd=chapter_dir)
         return result, out
 
@@ -362,14 +361,14 @@ class FilterTest(unittest.TestCase):
         v = Variant(self).replace(CH2, '// END SOLUTION\n', '')
         result, _ = self.tangle(v.dir)
         self.assertNotEqual(result.returncode, 0)
-        self.assertIn('exercise_filter: %s:' % CH2, result.stderr)
+        self.assertIn('markup_filter: %s:' % CH2, result.stderr)
         self.assertIn('never closed', result.stderr)
 
 
 class WeaveTest(unittest.TestCase):
     def test_exercise_box(self):
-        result = run(['pandoc', CH1, '--lua-filter', os.path.join(TOOLS, 'exercises.lua'),
-                      '--lua-filter', os.path.join(TOOLS, 'weave.lua'), '-t', 'latex'],
+        result = run(['pandoc', CH1, '--lua-filter', os.path.join(TOOLS, 'book', 'exercises.lua'),
+                      '--lua-filter', os.path.join(TOOLS, 'book', 'weave.lua'), '-t', 'latex'],
                      cwd=FIXTURE)
         self.assertEqual(result.returncode, 0, result.stderr)
         latex = result.stdout
@@ -387,7 +386,7 @@ class WeaveTest(unittest.TestCase):
 
 
 def build_kits(test, src, out, chapters=(), book=False):
-    result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build', '--src', src,
+    result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'build', '--src', src,
                   '--out', out] + ([] if book else ['--no-book']) + list(chapters))
     test.assertEqual(result.returncode, 0, result.stdout + result.stderr)
     return result
@@ -399,7 +398,7 @@ class KitTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.out = tempfile.mkdtemp()
-        cls.result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build',
+        cls.result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'build',
                           '--src', FIXTURE, '--out', cls.out])
         cls.student = os.path.join(cls.out, 'student')
         cls.solution = os.path.join(cls.out, 'solution')
@@ -414,8 +413,8 @@ class KitTest(unittest.TestCase):
     def test_student_kit(self):
         s = self.student
         for rel in ('Makefile', 'README.md', 'book.pdf', 'exercises.json', 'book.md',
-                    CH1, CH2, 'tests/ch01/test_sums.cpp', 'tools/exercises.mk',
-                    'tools/tangle.py', 'tests/tools/test_toolchain.py',
+                    CH1, CH2, 'tests/ch01/test_sums.cpp', 'tools/make/exercises.mk',
+                    'tools/noweb/tangle.py', 'tests/tools/test_toolchain.py',
                     'tangled/lrt/sums.cpp'):
             self.assertTrue(os.path.isfile(os.path.join(s, rel)), rel)
         # The grader's tests grade the repository's solutions and could only
@@ -438,7 +437,7 @@ class KitTest(unittest.TestCase):
         self.assertEqual(manifest['points'], 9)
         self.assertNotIn('hidden_tests', manifest['exercises'][0])
         with open(os.path.join(s, 'book.pdf'), 'rb') as f:
-            pdf = exercise_kits.pdf_text(f.read())
+            pdf = kits.pdf_text(f.read())
         self.assertIn('Exercise 1.2', pdf)
         self.assertIn('Hint: Two comparisons suffice', pdf)
         self.assertIn('"Exercise ex-2.1 is not done yet', pdf)
@@ -469,7 +468,7 @@ class KitTest(unittest.TestCase):
         def text(edition):
             pages = sorted(glob.glob(os.path.join(self.out, edition, 'html', '*.html')))
             self.assertTrue(pages, edition)
-            return '\n'.join(exercise_kits.html_text(read(p)) for p in pages)
+            return '\n'.join(kits.html_text(read(p)) for p in pages)
         student, solution = text('student'), text('solution')
         self.assertIn('Exercise 1.2', student)
         self.assertIn('"Exercise ex-2.1 is not done yet', student)
@@ -487,7 +486,7 @@ class KitTest(unittest.TestCase):
         return out
 
     def leaks(self, out, edition='student'):
-        return exercise_kits.leaks(out, FIXTURE, edition)
+        return kits.leaks(out, FIXTURE, edition)
 
     def test_no_leaks(self):
         self.assertEqual(self.leaks(self.out), [])
@@ -512,7 +511,7 @@ class KitTest(unittest.TestCase):
                   '#include <stdexcept>\n#if 0\n' + pair + '#endif\n')
         out = tempfile.mkdtemp()
         self.addCleanup(shutil.rmtree, out)
-        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build', '--src',
+        result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'build', '--src',
                       v.dir, '--out', out, '--no-book'])
         self.assertNotEqual(result.returncode, 0)
         problems = [l for l in result.stderr.splitlines()
@@ -555,10 +554,10 @@ class KitTest(unittest.TestCase):
         self.assertIn('Exercise ex-2.1 is not done yet', read(os.path.join(student, CH2)))
         manifest = json.loads(read(os.path.join(student, 'exercises.json')))
         self.assertEqual([e['id'] for e in manifest['exercises']], ['ex-2.1'])
-        self.assertEqual(exercise_kits.leaks(out, FIXTURE), [])
+        self.assertEqual(kits.leaks(out, FIXTURE), [])
 
     def test_unknown_chapter_is_an_error(self):
-        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build', '--src',
+        result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'build', '--src',
                       FIXTURE, '--out', os.path.join(self.out, 'x'), '--no-book', '07'])
         self.assertNotEqual(result.returncode, 0)
         self.assertIn('no chapter 07', result.stderr)
@@ -581,7 +580,7 @@ class PlanKitTest(unittest.TestCase):
         cls.plan = os.path.join(cls.tmp, 'course.toml')
         write(cls.plan, cls.PLAN)
         cls.out = os.path.join(cls.tmp, 'first')
-        cls.result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build',
+        cls.result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'build',
                           '--src', FIXTURE, '--out', cls.out, '--no-book',
                           '--plan', cls.plan, '--assignment', 'first'])
 
@@ -604,7 +603,7 @@ class PlanKitTest(unittest.TestCase):
             self.assertEqual(read(os.path.join(self.out, 'solution', name)),
                              read(os.path.join(FIXTURE, name)))
         self.assertIn('ex-1.2 are stubs too', read(os.path.join(student, 'README.md')))
-        self.assertEqual(exercise_kits.leaks(self.out, FIXTURE), [])
+        self.assertEqual(kits.leaks(self.out, FIXTURE), [])
 
     def test_manifest_has_the_plans_points(self):
         manifest = json.loads(read(os.path.join(self.out, 'student', 'exercises.json')))
@@ -623,12 +622,12 @@ class PlanKitTest(unittest.TestCase):
         solution = solution.split('// BEGIN SOLUTION\n')[1].split('// END SOLUTION')[0]
         path = os.path.join(out, 'student', 'tests', 'ch01', 'test_sums.cpp')
         write(path, read(path) + '/*\n' + solution + '*/\n')
-        self.assertTrue([p for p in exercise_kits.leaks(out, FIXTURE) if 'ex-1.2' in p])
+        self.assertTrue([p for p in kits.leaks(out, FIXTURE) if 'ex-1.2' in p])
 
     def test_bad_plan_stops_the_build_with_file_and_line(self):
         bad = os.path.join(self.tmp, 'bad.toml')
         write(bad, self.PLAN.replace('"ex-1.2"]', '"ex-1.3"]'))
-        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build',
+        result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'build',
                       '--src', FIXTURE, '--out', os.path.join(self.tmp, 'bad'), '--no-book',
                       '--plan', bad, '--assignment', 'first'])
         self.assertNotEqual(result.returncode, 0)
@@ -655,25 +654,25 @@ class PlanKitTest(unittest.TestCase):
                   '    EXPECT_EQ(ex::SumOfSquares(std::vector<int>{2}), Clamp(9, 0, 4));\n}\n\n'
                   'TEST(SumOfSquares, EmptyVectorThrows)')
         out = os.path.join(self.tmp, 'reaching')
-        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'build', '--src',
+        result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'build', '--src',
                       v.dir, '--out', out, '--no-book', '--plan', self.plan,
                       '--assignment', 'first'])
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         student = os.path.join(out, 'student')
-        ch1 = exercise_kits.make(student, ['test', 'CH=01'])
+        ch1 = kits.make(student, ['test', 'CH=01'])
         self.assertEqual(ch1.returncode, 0, ch1.stdout + ch1.stderr)
         later = ': Exercise ex-1.2 comes with a later assignment: leave <Clamp v to the range>'
         for name in ('Ex1_1_SumOfSquares.ClampedThroughACall',
                      'Ex1_1_SumOfSquares.ClampedInTheCheck', 'Ex1_2_Clamp.InsideAndOutside'):
             self.assertIn('SKIPPED: asof01/ch01 %s%s' % (name, later), ch1.stdout)
         self.assertIn('tests: 4 passed, 0 failed, 3 skipped', ch1.stdout)
-        ch2 = exercise_kits.make(student, ['test', 'CH=02'])
+        ch2 = kits.make(student, ['test', 'CH=02'])
         self.assertNotEqual(ch2.returncode, 0)
         self.assertIn('FAILED: asof02/ch02 Ex2_1_Mean.SmallVectors', ch2.stdout)
         self.assertNotIn('SKIPPED', ch2.stdout)
         # `try` accepts both: the failures are this assignment's, the skips
         # a later one's.
-        tried = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'try', '--src',
+        tried = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'try', '--src',
                      v.dir, '--out', out, 'CH=02'])
         self.assertEqual(tried.returncode, 0, tried.stdout + tried.stderr)
         self.assertIn('try: student kit: make test CH=02: tests: 2 passed, 1 failed',
@@ -683,7 +682,7 @@ class PlanKitTest(unittest.TestCase):
         test = os.path.join(student, 'tests', 'ch02', 'test_means.cpp')
         write(test, read(test) + '\nTEST(Mean, Planted) { EXPECT_EQ(Twice(2), 5); }\n'
               'TEST(Mean, UsesTheMean) { EXPECT_EQ(Mean({2}), 2); }\n')
-        tried = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'try', '--src',
+        tried = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'try', '--src',
                      v.dir, '--out', out, 'CH=02'])
         self.assertNotEqual(tried.returncode, 0)
         self.assertIn('student: asof02/ch02 Mean.Planted fails, and not only because of '
@@ -691,7 +690,7 @@ class PlanKitTest(unittest.TestCase):
         self.assertNotIn('UsesTheMean fails', tried.stderr)
         # The solution kit must be the source's.
         write(os.path.join(out, 'solution', 'tests', 'ch01', 'test_sums.cpp'), '\n')
-        tried = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'try', '--src',
+        tried = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'try', '--src',
                      v.dir, '--out', out, 'CH=01'])
         self.assertIn('solution: tests/ch01/test_sums.cpp is not the source\'s', tried.stderr)
 
@@ -705,7 +704,7 @@ class ValidationTest(unittest.TestCase):
         out = tempfile.mkdtemp()
         self.addCleanup(shutil.rmtree, out)
         build_kits(self, v.dir, out, ['01'])
-        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'validate',
+        result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'validate',
                       '--out', out])
         self.assertNotEqual(result.returncode, 0)
         self.assertRegex(result.stdout, r'solution edition: 7 test runs, 7 passed, 0 failed')
@@ -723,7 +722,7 @@ class ValidationTest(unittest.TestCase):
         out = tempfile.mkdtemp()
         self.addCleanup(shutil.rmtree, out)
         build_kits(self, FIXTURE, out)
-        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'validate',
+        result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'validate',
                       '--out', out])
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         # Graded: each chapter solved, then each exercise alone stubbed.
@@ -745,7 +744,7 @@ class ValidationTest(unittest.TestCase):
         out = tempfile.mkdtemp()
         self.addCleanup(shutil.rmtree, out)
         build_kits(self, v.dir, out, ['01'])
-        result = run(['python3', os.path.join(TOOLS, 'exercise_kits.py'), 'validate',
+        result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'validate',
                       '--out', out])
         self.assertNotEqual(result.returncode, 0)
         self.assertRegex(result.stdout, r'student edition: \d+ test runs')

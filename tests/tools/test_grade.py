@@ -1,4 +1,4 @@
-"""Tests of the classroom grader (tools/grade.py, docs/grading.md).
+"""Tests of the classroom grader (tools/grading/grade.py, docs/grading.md).
 
 Submissions are made from chapters/05-slab-test.md (three exercises, 7
 points) by text edits, in a temporary directory, and graded as one batch (two
@@ -29,7 +29,7 @@ Two kinds of submission:
   before the batch.
 
 The expectations come from the book, not from the grader: the exercises and
-their points from `tools/exercises.py list --json` (checked against the
+their points from `tools/exercises/markup.py list --json` (checked against the
 exercise divs' own `points=`), each exercise's tests from a scan of the test
 sources. The batch grades every chapter with exercises (`--chapters`, given
 explicitly), so the chapters other than 5 are in max_score and their tests
@@ -57,7 +57,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 import attacks  # noqa: E402
 
-GRADE = os.path.join(ROOT, 'tools', 'grade.py')
+GRADE = os.path.join(ROOT, 'tools', 'grading', 'grade.py')
 CHAPTER = 'chapters/05-slab-test.md'
 F9 = 'Compute the reciprocal direction and its sign on axis i'
 F10 = 'Look up the reciprocal direction and its sign on axis i'
@@ -66,7 +66,7 @@ TIME_LIMIT = 2
 # What a student sees of a hidden test that failed a check (Hint aside).
 HIDDEN_FAIL = '**FAIL** (hidden test)\n\n```\na hidden test failed (its checks are not shown)\n```'
 
-# Read independently of tools/exercises.py, which the grader uses.
+# Read independently of tools/exercises/markup.py, which the grader uses.
 TEST_LINE = re.compile(r'^\s*(?:TEST|TEST_F|TEST_P|EXERCISE_TEST)\s*\(\s*(\w+)\s*,\s*(\w+)\s*\)')
 EXERCISE_SUITE = re.compile(r'^Ex(\d+)_(\d+)_\w+$')
 EXERCISE_DIV = re.compile(r'^:{3,}\s*\{\.exercise\s+#(ex-\d+\.\d+)\s.*\bpoints=(\d+)')
@@ -84,8 +84,8 @@ def chapter_files():
 
 
 def book_exercises():
-    """{exercise id: its entry of `tools/exercises.py list --json`}."""
-    out = subprocess.run([sys.executable, os.path.join(ROOT, 'tools', 'exercises.py'),
+    """{exercise id: its entry of `tools/exercises/markup.py list --json`}."""
+    out = subprocess.run([sys.executable, os.path.join(ROOT, 'tools', 'exercises', 'markup.py'),
                           'list', '--json'] + chapter_files(), cwd=ROOT,
                          capture_output=True, text=True, check=True).stdout
     return {e['id']: e for e in json.loads(out)}
@@ -375,7 +375,7 @@ def make_submissions(ns, root=ROOT):
     os.makedirs(ns.subs)
     sol = read(os.path.join(root, CHAPTER))
     ns.solution_text = sol
-    student = subprocess.run([sys.executable, os.path.join(root, 'tools', 'exercises.py'),
+    student = subprocess.run([sys.executable, os.path.join(root, 'tools', 'exercises', 'markup.py'),
                               'student', CHAPTER], cwd=root, capture_output=True,
                              text=True, check=True).stdout
     both11 = lambda text, code: inject(inject(text, F11[0], code), F11[1], code)  # noqa
@@ -542,7 +542,7 @@ class GradeTest(unittest.TestCase):
         # Every chapter with exercises is graded, named explicitly so that a
         # kit's exercises.json (the default's source in a kit) changes nothing.
         cls.graded = ['--chapters', ' '.join(cls.chapters)]
-        grade = [sys.executable, os.path.join(cls.copy, 'tools', 'grade.py'),
+        grade = [sys.executable, os.path.join(cls.copy, 'tools', 'grading', 'grade.py'),
                  '--cache', cls.cache, '--time-limit', str(TIME_LIMIT),
                  '--memory-limit', '512'] + cls.graded
         # Nor does the copy's grader write its bytecode into the copy.
@@ -1069,7 +1069,7 @@ class WatchTest(unittest.TestCase):
         self.addCleanup(shutil.rmtree, tmp)
         self.repo, self.cache = os.path.join(tmp, 'repo'), os.path.join(tmp, 'cache')
         for rel in ('Makefile', 'tests/ch05/test_a.cpp',
-                    'tests/hidden/ch05/test_b.cpp', 'tools/grade.py', 'chapters/05-a.md'):
+                    'tests/hidden/ch05/test_b.cpp', 'tools/grading/grade.py', 'chapters/05-a.md'):
             append(os.path.join(self.repo, rel), rel + '\n')
         append(os.path.join(self.repo, '.gitignore'), '/build/\n__pycache__/\n')
         subprocess.run(['git', 'init', '-q', self.repo], check=True)
@@ -1097,7 +1097,7 @@ class WatchTest(unittest.TestCase):
         before, cache_before = self.watch()
         planted = self.write(self.repo, [
             'tests/ch05/test_a.cpp', 'tests/ch05/test_zz_attack.cpp',
-            'tools/grade.py', 'tools/planted.py',
+            'tools/grading/grade.py', 'tools/planted.py',
             'chapters/05-a.md', 'chapters/06-planted.md', 'Makefile'])
         gone = os.path.join(self.repo, 'tests/hidden/ch05/test_b.cpp')
         os.remove(gone)
@@ -1131,7 +1131,7 @@ class WatchTest(unittest.TestCase):
         self.assertEqual(sorted(os.path.relpath(p, copy) for p in tree_files(copy, ())), [
             '.gitignore', 'Makefile', 'chapters/05-a.md', 'chapters/06-new.md',
             'log.test', 'tests/ch05/test_a.cpp', 'tests/hidden/ch05/test_b.cpp',
-            'tools/grade.py'])
+            'tools/grading/grade.py'])
 
     def test_copy_outside_git_takes_the_tree_but_build_and_bytecode(self):
         shutil.rmtree(os.path.join(self.repo, '.git'))
@@ -1139,7 +1139,7 @@ class WatchTest(unittest.TestCase):
         copy_book(self.repo, copy)
         self.assertEqual(sorted(os.path.relpath(p, copy) for p in tree_files(copy, ())), [
             '.gitignore', 'Makefile', 'chapters/05-a.md', 'log.test',
-            'tests/ch05/test_a.cpp', 'tests/hidden/ch05/test_b.cpp', 'tools/grade.py'])
+            'tests/ch05/test_a.cpp', 'tests/hidden/ch05/test_b.cpp', 'tools/grading/grade.py'])
 
 
 if __name__ == '__main__':
@@ -1152,9 +1152,9 @@ class SandboxUidTest(unittest.TestCase):
     worker (seen in a batch: the other worker's sandbox failed to start)."""
 
     def test_graders_running_at_once_take_different_uids(self):
-        code = ('import sys, time; sys.path.insert(0, %r); import sandbox; '
+        code = ('import sys, time; sys.path.insert(0, %r); from tools.grading import sandbox; '
                 'print(sandbox.sandbox_uid(), flush=True); time.sleep(3)'
-                % os.path.join(ROOT, 'tools'))
+                % ROOT)
         first = subprocess.Popen([sys.executable, '-c', code], stdout=subprocess.PIPE,
                                  text=True)
         second = subprocess.Popen([sys.executable, '-c', code], stdout=subprocess.PIPE,

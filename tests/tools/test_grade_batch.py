@@ -1,4 +1,4 @@
-"""Tests of the batch grader's names and identities (tools/grade.py,
+"""Tests of the batch grader's names and identities (tools/grading/grade.py,
 docs/grading.md "Batch mode", docs/course.md "The gradebook").
 
 Two holes of the grading wall (issue 39):
@@ -30,9 +30,9 @@ import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-GRADE = os.path.join(ROOT, 'tools', 'grade.py')
-sys.path.insert(0, os.path.join(ROOT, 'tools'))
-import grade  # noqa: E402
+GRADE = os.path.join(ROOT, 'tools', 'grading', 'grade.py')
+sys.path.insert(0, ROOT)
+from tools.grading import grade  # noqa: E402
 sys.path.insert(0, HERE)
 import test_grade as tg  # noqa: E402
 
@@ -284,8 +284,8 @@ class HostileBatchTest(unittest.TestCase):
         if fallback:
             fake = tg.failing_bwrap(os.path.join(tmp, 'fake-bin'))
             env['PATH'] = fake + os.pathsep + env['PATH']
-        mode = subprocess.run([sys.executable, '-c', 'import sandbox; print(sandbox.isolation())'],
-                              cwd=os.path.join(ROOT, 'tools'), env=env, capture_output=True,
+        mode = subprocess.run([sys.executable, '-c', 'from tools.grading import sandbox; print(sandbox.isolation())'],
+                              cwd=ROOT, env=env, capture_output=True,
                               text=True, check=True).stdout.strip()
         before = snapshot(tmp, out)
         proc = subprocess.run([sys.executable, GRADE, '--batch', subs, '--out', out,

@@ -154,8 +154,8 @@ class CrashInOneExerciseTest(unittest.TestCase):
         self.check_daemon('unprivileged user', fallback=True)
 
 
-sys.path.insert(0, os.path.join(tg.ROOT, 'tools'))
-import sandbox  # noqa: E402
+sys.path.insert(0, tg.ROOT)
+from tools.grading import sandbox  # noqa: E402
 
 
 @unittest.skipUnless(os.geteuid() == 0, 'only a root grader runs its sandboxes as their own user')
@@ -183,9 +183,9 @@ class UidLeftoversTest(unittest.TestCase):
     def test_graders_with_other_temporary_directories_take_other_uids(self):
         # As the autograder's test runs one, in a private /tmp: before, it
         # took the uid of a grader running beside it, and killed its workers.
-        code = ('import sys, time; sys.path.insert(0, %r); import sandbox; '
+        code = ('import sys, time; sys.path.insert(0, %r); from tools.grading import sandbox; '
                 'print(sandbox.sandbox_uid(), flush=True); time.sleep(3)'
-                % os.path.join(tg.ROOT, 'tools'))
+                % tg.ROOT)
         graders = []
         for _ in range(2):
             env = dict(os.environ, TMPDIR=tempfile.mkdtemp(dir=self.tmp))

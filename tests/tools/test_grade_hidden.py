@@ -153,7 +153,7 @@ class HiddenInputsTest(unittest.TestCase):
                                   'the GoogleTest seed': number(GTEST_SEED)})
             try:
                 proc = subprocess.run(
-                    [sys.executable, os.path.join(self.copy, 'tools', 'grade.py'),
+                    [sys.executable, os.path.join(self.copy, 'tools', 'grading', 'grade.py'),
                      '--cache', os.path.join(self.tmp, 'cache-' + mode.split()[0]),
                      '--out', out, '--chapters', '05', '--time-limit', str(tg.TIME_LIMIT),
                      '@' + self.flags, os.path.join(self.tmp, 'recorder')],

@@ -19,10 +19,9 @@ import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), 'tools'))
+sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))
 import test_grade as tg  # noqa: E402
-import grade  # noqa: E402
-import grade_build  # noqa: E402
+from tools.grading import build as grade_build, grade  # noqa: E402
 
 # ex-5.10's region, after the book's solution lines.
 SOLUTION = 'Float invD = invDir[i];\nint isNeg = dirIsNeg[i];'
@@ -61,13 +60,11 @@ class CacheKeyTest(unittest.TestCase):
     def test_every_tool_of_the_tangle_is_in_the_judge_key(self):
         self.write('chapters/05-x.md', 'text\n')
         self.write('tests/ch05/t.cpp', '\n')
-        for tool in ('tangle.py', 'exercise_filter.py', 'exercises.py',
-                     'fragment_comments.py'):
-            self.write('tools/' + tool, '# %s\n' % tool)
-        for tool in ('tangle.py', 'exercise_filter.py', 'exercises.py',
-                     'fragment_comments.py'):
+        for tool in grade_build.TANGLE_TOOLS:
+            self.write(tool, '# %s\n' % tool)
+        for tool in grade_build.TANGLE_TOOLS:
             before = grade_build.judge_key(self.tmp, '05')
-            self.write('tools/' + tool, '# %s, changed\n' % tool)
+            self.write(tool, '# %s, changed\n' % tool)
             self.assertNotEqual(grade_build.judge_key(self.tmp, '05'), before, tool)
 
     def test_a_line_that_is_not_json_costs_only_its_own_test(self):

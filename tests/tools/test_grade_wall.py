@@ -7,7 +7,7 @@ isolation modes.
   its entry point) tries what the filter denies and what it allows, from a
   static initializer and from main; and where the kernel refuses the filter
   (a parent's filter that denies seccomp), the program does not run at all.
-- WallGradingTest: chapter 5 graded by tools/grade.py in a scratch copy of
+- WallGradingTest: chapter 5 graded by tools/grading/grade.py in a scratch copy of
   the repository, in both modes (bubblewrap; the fallback without
   namespaces, forced by a failing `bwrap` first on PATH), as one batch per
   mode of three submissions:
@@ -197,7 +197,7 @@ class WallProbeTest(unittest.TestCase):
         with open(source, 'w') as f:
             f.write(PROBE)
         cls.probe = os.path.join(cls.tmp, 'probe')
-        # As tools/grade_build.py links a worker.
+        # As tools/grading/build.py links a worker.
         subprocess.run(['g++', '-std=c++17', '-O0', '-c', WALL, '-o',
                         os.path.join(cls.tmp, 'wall.o')], check=True)
         subprocess.run(['g++', '-std=c++17', '-O0', '-static', '-o', cls.probe, source,
@@ -250,7 +250,7 @@ class WallProbeTest(unittest.TestCase):
 def in_region(code):
     """ex-5.9's region (inside the loop of the first IntersectP) for code
     that defines `lrtWallReport` (a std::string); every call throws it. A
-    region's brackets balance (tools/compile_wall.py), so the code stays in
+    region's brackets balance (tools/grading/compile_wall.py), so the code stays in
     the function: it runs at the first call, and no earlier (what a static
     initializer could do, the probe above checks)."""
     return '\n'.join([
@@ -512,7 +512,7 @@ class WallGradingTest(unittest.TestCase):
         before = tg.snapshot(watched)
         start = time.monotonic()
         proc = subprocess.run(
-            [sys.executable, os.path.join(self.copy, 'tools', 'grade.py'),
+            [sys.executable, os.path.join(self.copy, 'tools', 'grading', 'grade.py'),
              '--cache', os.path.join(self.tmp, 'cache'), '--batch', self.subs, '--out', out,
              '--chapters', '05', '--time-limit', str(TIME_LIMIT)],
             cwd=self.copy, env=env, capture_output=True, text=True, timeout=1200)

@@ -1,5 +1,5 @@
 """Tests of the Gradescope autograder that `make gradescope` writes
-(tools/gradescope.py, gradescope/, docs/grading.md).
+(tools/grading/gradescope.py, gradescope/, docs/grading.md).
 
 The zip is built for assignment "slabs" of the example course plan
 (docs/course-example.toml: ex-5.9 and ex-5.11, 4 and 6 points, where the
@@ -61,7 +61,7 @@ class GradescopeTest(unittest.TestCase):
         cls.assignment = [a for a in plan['assignment'] if a['name'] == ASSIGNMENT][0]
         cls.tmp = tempfile.mkdtemp(prefix='lrt-gradescope-test-')
         cls.zip = os.path.join(cls.tmp, 'autograder.zip')
-        proc = subprocess.run([sys.executable, os.path.join(ROOT, 'tools', 'gradescope.py'),
+        proc = subprocess.run([sys.executable, os.path.join(ROOT, 'tools', 'grading', 'gradescope.py'),
                                '--out', cls.zip, '--plan', PLAN, '--assignment', ASSIGNMENT,
                                '--', '--time-limit', '5'], capture_output=True, text=True)
         assert proc.returncode == 0, proc.stdout + proc.stderr
@@ -80,7 +80,7 @@ class GradescopeTest(unittest.TestCase):
                     os.path.join(cls.autograder, 'run_autograder'))
         with open(os.path.join(ROOT, CHAPTER), encoding='utf-8') as f:
             solution = f.read()
-        student = subprocess.run([sys.executable, os.path.join(ROOT, 'tools', 'exercises.py'),
+        student = subprocess.run([sys.executable, os.path.join(ROOT, 'tools', 'exercises', 'markup.py'),
                                   'student', CHAPTER], cwd=ROOT, capture_output=True,
                                  text=True, check=True).stdout
         cls.solution = cls.grade({'chapters/05-slab-test.md': solution})
@@ -143,7 +143,7 @@ class GradescopeTest(unittest.TestCase):
 
     def test_zip_holds_the_scripts_at_its_top_and_what_is_graded(self):
         for name in ('setup.sh', 'run_autograder', 'grade_flags', 'course.toml',
-                     'tools/grade.py', 'tools/deps.sh', CHAPTER, 'tests/calls/judge.cpp'):
+                     'tools/grading/grade.py', 'tools/deps.sh', CHAPTER, 'tests/calls/judge.cpp'):
             self.assertIn(name, self.names)
         self.assertFalse([n for n in self.names if n.startswith(('tests/tools/', 'build/'))])
         with zipfile.ZipFile(self.zip) as z:

@@ -91,7 +91,7 @@ class ShortLinesTest(unittest.TestCase):
         self.addCleanup(shutil.rmtree, build)
         output = ''
         for goal in ('tangle', 'lib'):
-            result = subprocess.run(['make', '--no-print-directory', '-f', 'tools/asof.mk',
+            result = subprocess.run(['make', '--no-print-directory', '-f', 'tools/make/asof.mk',
                                      'ASOF=02', 'BUILD=' + build, 'CHAPTERS=' + CHAPTERS, goal] +
                                     list(extra),
                                     cwd=ROOT, env=ENV, capture_output=True, text=True)
@@ -113,7 +113,7 @@ class ShortLinesTest(unittest.TestCase):
     def test_v1_prints_the_commands_in_full(self):
         _, lines = self.build('V=1')
         self.assertFalse([l for l in lines if re.match(r'^(TANGLE|CXX|AR) ', l)], lines)
-        self.assertTrue([l for l in lines if 'tools/tangle.py --line-directives' in l], lines)
+        self.assertTrue([l for l in lines if 'tools/noweb/tangle.py --line-directives' in l], lines)
         self.assertTrue([l for l in lines if re.search(r'\bg\+\+ .* -c src/lrt/\S+\.cpp', l)],
                         lines)
         self.assertTrue([l for l in lines if l.startswith('ar rcs ')], lines)

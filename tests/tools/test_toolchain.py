@@ -20,8 +20,8 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 TOOLS = os.path.join(ROOT, 'tools')
 LINT_CASES = os.path.join(HERE, 'lint')
 
-sys.path.insert(0, TOOLS)
-import layout_check  # noqa: E402
+sys.path.insert(0, ROOT)
+from tools.book import layout_check  # noqa: E402
 
 
 def run(cmd, cwd=ROOT):
@@ -29,7 +29,7 @@ def run(cmd, cwd=ROOT):
 
 
 def lint(*names):
-    return run(['python3', os.path.join(TOOLS, 'lint.py')] +
+    return run(['python3', os.path.join(TOOLS, 'noweb', 'lint.py')] +
                [os.path.join('tests/tools/lint', name) for name in names])
 
 
@@ -99,7 +99,7 @@ class LintTest(unittest.TestCase):
         self.assertLintError(['long-line.md'], 'long-line.md:5', ['columns'])
 
     def test_chapter_names_the_build_can_order(self):
-        result = run(['python3', os.path.join(TOOLS, 'lint.py'), '--book',
+        result = run(['python3', os.path.join(TOOLS, 'noweb', 'lint.py'), '--book',
                       'tests/tools/lint/good.md'])
         self.assertEqual(result.returncode, 1)
         self.assertIn('tests/tools/lint/good.md:0: a chapter file is named NN-slug.md',
@@ -116,7 +116,7 @@ class TangleTest(unittest.TestCase):
         self.addCleanup(shutil.rmtree, self.tmp)
 
     def tangle(self, *args):
-        return run(['python3', os.path.join(TOOLS, 'tangle.py')] + list(args))
+        return run(['python3', os.path.join(TOOLS, 'noweb', 'tangle.py')] + list(args))
 
     def test_compiler_errors_point_into_the_chapter(self):
         chapter = os.path.join(self.tmp, '02-example.md')
@@ -181,7 +181,7 @@ class TangleTest(unittest.TestCase):
 
 
 class IncrementalBuildTest(unittest.TestCase):
-    """tools/asof.mk on a one-chapter book in a scratch checkout, with a
+    """tools/make/asof.mk on a one-chapter book in a scratch checkout, with a
     compiler cache of its own: an edited header is recompiled, never taken
     from the cache, and a precompiled header that does not fit fails the
     build instead of being quietly ignored. Light flags (no -g, no -O2) keep
@@ -218,9 +218,9 @@ class IncrementalBuildTest(unittest.TestCase):
         self.env['CCACHE_DIR'] = self.ccache
 
     def asof_make(self, cxxflags, *args):
-        """Runs tools/asof.mk as of the one chapter, in the checkout, printing
+        """Runs tools/make/asof.mk as of the one chapter, in the checkout, printing
         its commands in full (V=1), which the tests read."""
-        return subprocess.run(['make', '--no-print-directory', '-f', 'tools/asof.mk', 'ASOF=02',
+        return subprocess.run(['make', '--no-print-directory', '-f', 'tools/make/asof.mk', 'ASOF=02',
                                'V=1',
                                'CHAPTERS=chapters/02-value.md', 'BUILD=build',
                                'CXXFLAGS=' + cxxflags] + list(args),
@@ -271,7 +271,7 @@ class IncrementalBuildTest(unittest.TestCase):
 
 
 class RunTestsTest(unittest.TestCase):
-    """tools/runtests.py runs a test binary whose bytes equal an earlier
+    """tools/testing/runtests.py runs a test binary whose bytes equal an earlier
     one's only once (the code as of a later chapter often links exactly the
     same program), and reports its results under both labels."""
 
@@ -310,7 +310,7 @@ sys.exit(1 if FAILS else 0)
         other = self.program('07', False)
         log = os.path.join(self.tmp, 'runs.log')
         result = subprocess.run(
-            ['python3', os.path.join(TOOLS, 'runtests.py'), '--jobs', '1',
+            ['python3', os.path.join(TOOLS, 'testing', 'runtests.py'), '--jobs', '1',
              'asof05/ch03=' + same1, 'asof06/ch03=' + same2, 'asof07/ch03=' + other],
             capture_output=True, text=True, env=dict(os.environ, RUNS_LOG=log))
         with open(log) as f:
@@ -345,7 +345,7 @@ class Meet(unittest.TestCase):
         return directory
 
     def run_python_tests(self, directory, jobs):
-        return subprocess.run(['python3', os.path.join(TOOLS, 'runtests.py'), '--jobs',
+        return subprocess.run(['python3', os.path.join(TOOLS, 'testing', 'runtests.py'), '--jobs',
                                str(jobs), '--python-tests', directory],
                               capture_output=True, text=True, timeout=300)
 
@@ -389,7 +389,7 @@ class WeaveTest(unittest.TestCase):
         chapter = os.path.join(tmp, '01-weave.md')
         with open(chapter, 'w') as f:
             f.write(text)
-        return run(['pandoc', chapter, '--lua-filter', os.path.join(TOOLS, 'weave.lua')] +
+        return run(['pandoc', chapter, '--lua-filter', os.path.join(TOOLS, 'book', 'weave.lua')] +
                    list(options) + ['-t', 'latex'], cwd=tmp)
 
     def test_chunks_are_numbered_and_linked(self):
@@ -519,7 +519,7 @@ class WeaveTest(unittest.TestCase):
 
 
 class LayoutCheckTest(unittest.TestCase):
-    """tools/layout_check.py on layout records written by hand."""
+    """tools/book/layout_check.py on layout records written by hand."""
 
     WHOLE = [('header', 'chunk:2.1', '10'), ('first', 'chunk:2.1', '10'),
              ('last', 'chunk:2.1', '11'), ('footer', 'chunk:2.1', '11')]
@@ -620,7 +620,7 @@ class LayoutFixtureTest(unittest.TestCase):
             with open(chapter, 'w') as f:
                 f.write(layout_fixture(keep))
             out = os.path.join(cls.tmp, 'out-%s' % keep)
-            cls.results[keep] = (out, run([os.path.join(TOOLS, 'weave.sh'), out, cls.book,
+            cls.results[keep] = (out, run([os.path.join(TOOLS, 'book', 'weave.sh'), out, cls.book,
                                            chapter]))
 
     @classmethod
@@ -653,7 +653,7 @@ class LayoutFixtureTest(unittest.TestCase):
         chapter = os.path.join(self.tmp, '01-cite.md')
         with open(chapter, 'w') as f:
             f.write('# Ch\n\nAs @Nobody2000 said.\n\n```cpp\n<<lrt/x.h>>=\nint a;\n@\n```\n')
-        result = run([os.path.join(TOOLS, 'weave.sh'), os.path.join(self.tmp, 'cite'),
+        result = run([os.path.join(TOOLS, 'book', 'weave.sh'), os.path.join(self.tmp, 'cite'),
                       self.book, chapter])
         self.assertNotEqual(result.returncode, 0)
         self.assertIn('Nobody2000', result.stderr)

@@ -1,0 +1,351 @@
+--[[
+weave.lua: the pandoc filter that turns lrt's chapters into a literate book,
+typeset with LaTeX. What the book's fragments are, how they are numbered,
+used and continued, is read by tools/book/fragments.lua; this filter typesets it.
+
+Each chunk gets a `<Name> =` or `<Name> +=` header with its number,
+highlighted C++, fragment uses shown as `<Name 2.3>` and linked to their
+definition, and a footer that says where the fragment is used, which pieces
+of it come just before and after, and what it defines, with page numbers.
+The environment \begin{fragment} of tools/book/preamble.tex keeps the header with
+the first lines of code and the footer with the last, and leaves a record of
+where they landed that tools/book/layout_check.py reads. At the end of the book
+come the References (when the book has a bibliography), an Index of Fragments
+and an Index of Identifiers (from noweb's `@ %def` lines).
+
+It also resolves cross-references written as @sec:id, @fig:id, @eq:id and
+@tbl:id, and numbered equations written as `$$ ... $$ {#eq:id}`; a reference
+to a label that does not exist stops the build (no "??" in the book). Other
+citations (@knuth1984) are left to pandoc's citeproc, which runs after it.
+
+Prose may show a real fragment as an example, in inline code with a class:
+`Name`{.fragment-header} (a header line, alone in its paragraph),
+`Name`{.fragment-use} (a use, as code shows it) and `Name`{.fragment-number}.
+They name the fragment's first piece; a name that no chunk defines stops the
+build, so the examples cannot go stale.
+
+Code is highlighted here, through pandoc.write, so that fragment uses can be
+turned into links inside the highlighted text. No code block reaches the LaTeX
+writer, so the highlighting macros come from tools/weave.sh.
+]]
+
+package.path = pandoc.path.directory(PANDOC_SCRIPT_FILE) .. '/?.lua;' .. package.path
+local fragments = require('fragments')
+
+local book   -- what tools/book/fragments.lua read
+
+local function fail(message)
+  io.stderr:write('weave.lua: ' .. message .. '\n')
+  os.exit(1)
+end
+
+local function latex_escape(s)
+  return (s:gsub('[\\{}$&#^_%%~<>]', {
+    ['\\'] = '\\textbackslash{}', ['{'] = '\\{', ['}'] = '\\}', ['$'] = '\\$',
+    ['&'] = '\\&', ['#'] = '\\#', ['^'] = '\\textasciicircum{}', ['_'] = '\\_',
+    ['%'] = '\\%', ['~'] = '\\textasciitilde{}', ['<'] = '\\textless{}',
+    ['>'] = '\\textgreater{}',
+  }))
+end
+
+-- pandoc writes a code caret as \^{}, the circumflex accent over nothing,
+-- a small hat at the height of capitals; \lrtcaret (tools/book/preamble.tex) is
+-- the ASCII character, set larger and lower as code fonts draw it.
+local function code_carets(latex)
+  return (latex:gsub('\\%^{}', '\\lrtcaret{}'))
+end
+
+local function split_on(text, separator)
+  local pieces, start = {}, 1
+  while true do
+    local i, j = text:find(separator, start, true)
+    if not i then break end
+    pieces[#pieces + 1] = text:sub(start, i - 1)
+    start = j + 1
+  end
+  pieces[#pieces + 1] = text:sub(start)
+  return pieces
+end
+
+-------------------------------------------------------------------------------
+-- Typesetting a chunk
+
+local function ref(chunk)
+  return '\\chunkref{' .. chunk.label .. '}{' .. chunk.number .. '}'
+end
+
+local function ref_list(list)
+  local seen, parts = {}, {}
+  for _, chunk in ipairs(list) do
+    if not seen[chunk] then
+      seen[chunk] = true
+      parts[#parts + 1] = ref(chunk)
+    end
+  end
+  return table.concat(parts, ', ')
+end
+
+-- Highlighted code as LaTeX, and its number of lines.
+local function highlight(lines)
+  local latex = code_carets(fragments.highlight(lines, 'latex', function(name)
+    return '\\fraguse{' .. book.ids[name] .. '}'
+  end))
+  local body = latex:match('\\begin{Highlighting}%[%]\n(.-)\n\\end{Highlighting}')
+  local count = 0
+  for _ in ((body or '') .. '\n'):gmatch('[^\n]*\n') do count = count + 1 end
+  return latex, count
+end
+
+local function footer(chunk)
+  local notes = {}
+  if book:is_root(chunk.name) then
+    notes[#notes + 1] = '\\fragnote{File}{\\texttt{tangled/' .. latex_escape(chunk.name)
+                        .. '}}'
+  else
+    notes[#notes + 1] = '\\fragnote{Used in}{' .. ref_list(book.uses_of[chunk.name]) .. '}'
+  end
+  local previous, next = book:neighbours(chunk)
+  if previous then notes[#notes + 1] = '\\fragnote{Continues}{' .. ref(previous) .. '}' end
+  if next then notes[#notes + 1] = '\\fragnote{Continued in}{' .. ref(next) .. '}' end
+  if #chunk.defs > 0 then
+    local ids = {}
+    for _, id in ipairs(chunk.defs) do
+      ids[#ids + 1] = '\\identdef{' .. latex_escape(id) .. '}'
+    end
+    notes[#notes + 1] = '\\fragnote{Defines}{' .. table.concat(ids, ', ') .. '}'
+  end
+  return '\\fragfooter{' .. table.concat(notes, '\\fragsep ') .. '}'
+end
+
+local function render_chunk(chunk)
+  local code, lines = highlight(fragments.shown_lines(chunk))
+  local kind = chunk == book:first(chunk) and 'def' or 'cont'
+  return pandoc.RawBlock('latex', table.concat({
+    string.format('\\begin{fragment}{%s}{%d}\\fragheader{%s}{%s}{%s}{%s}', chunk.label,
+                  lines, chunk.label, chunk.number, book.ids[chunk.name], kind),
+    code,
+    footer(chunk) .. '\\end{fragment}'}, '\n'))
+end
+
+local function render_plain_code(block)
+  local lines = fragments.split_lines(block.text)
+  for i, line in ipairs(lines) do lines[i] = fragments.unescape_noweb(line) end
+  local code = pandoc.CodeBlock(table.concat(lines, '\n'), block.attr)
+  return pandoc.RawBlock('latex', code_carets(pandoc.write(pandoc.Pandoc({code}), 'latex')))
+end
+
+-- A fragment shown as an example in the prose (see the comment at the top).
+local function render_sample(code)
+  local class = fragments.sample_class(code)
+  if not class then return nil end
+  local first = book:fragment(code.text, 'the example `' .. code.text .. '`{.' .. class .. '}')
+  if class == 'fragment-number' then
+    return pandoc.RawInline('latex', '\\hyperref[' .. first.label .. ']{' ..
+                            first.number .. '}')
+  elseif class == 'fragment-use' then
+    return pandoc.RawInline('latex', '\\fraguse{' .. book.ids[first.name] .. '}')
+  end
+  return pandoc.RawInline('latex', '\\fragheaderline{' .. book.ids[first.name] .. '}{' ..
+                          first.label .. '}{' .. first.number .. '}{def}')
+end
+
+-------------------------------------------------------------------------------
+-- Figures: a short caption for the List of Figures
+
+-- Words after which a full stop does not end a sentence.
+local ABBREVIATIONS = {['e.g'] = true, ['i.e'] = true, cf = true, Fig = true, Eq = true,
+                       vs = true, al = true, etc = true, approx = true}
+
+-- The caption's first sentence: up to the first full stop outside braces and
+-- mathematics that is followed by a space and a capital, a command or a
+-- parenthesis, after a word that is neither an abbreviation nor an initial.
+local function first_sentence(latex)
+  local depth, math, i = 0, false, 1
+  while i <= #latex do
+    local c = latex:sub(i, i)
+    if c == '\\' then
+      local two = latex:sub(i, i + 1)
+      if two == '\\(' or two == '\\[' then math = true
+      elseif two == '\\)' or two == '\\]' then math = false end
+      i = i + 2
+    else
+      if c == '{' then depth = depth + 1
+      elseif c == '}' then depth = depth - 1
+      elseif c == '$' then math = not math
+      elseif c == '.' and depth == 0 and not math
+             and latex:sub(i + 1, i + 2):match('^%s[%u\\(]') then
+        local word = latex:sub(1, i - 1):match('([%w%.]*)$')
+        if not ABBREVIATIONS[word] and not word:match('^%u$') then
+          return latex:sub(1, i)
+        end
+      end
+      i = i + 1
+    end
+  end
+  return latex
+end
+
+-- \caption{long} as \caption[first sentence]{long}, in a figure's LaTeX.
+local function short_caption(latex)
+  local start, open = latex:find('\\caption{', 1, true)
+  if not start then return latex end
+  local group = latex:match('^%b{}', open)
+  if not group then return latex end
+  local long = group:sub(2, -2)
+  local short = first_sentence(long)
+  if short == long then return latex end
+  return latex:sub(1, start - 1) .. '\\caption[{' .. short .. '}]' ..
+         latex:sub(open)
+end
+
+-------------------------------------------------------------------------------
+-- The indexes
+
+local function fragment_index()
+  local out = {'\\begin{fragmentindex}'}
+  for _, name in ipairs(fragments.sorted_keys(book.by_name)) do
+    local entry = '\\fragindexentry{' .. book.ids[name] .. '}{' ..
+                  ref_list(book.by_name[name]) .. '}{'
+    if book:is_root(name) then
+      entry = entry .. 'file \\texttt{tangled/' .. latex_escape(name) .. '}'
+    else
+      entry = entry .. 'used in ' .. ref_list(book.uses_of[name])
+    end
+    out[#out + 1] = entry .. '}'
+  end
+  out[#out + 1] = '\\end{fragmentindex}'
+  return table.concat(out, '\n')
+end
+
+local function identifier_index()
+  local out = {'\\begin{identifierindex}'}
+  for _, id in ipairs(fragments.sorted_keys(book.identifiers)) do
+    local uses = book:identifier_uses(id)
+    out[#out + 1] = '\\identindexentry{' .. latex_escape(id) .. '}{' ..
+                    ref_list(book.identifiers[id]) .. '}{' ..
+                    (#uses > 0 and ('used in ' .. ref_list(uses)) or '') .. '}'
+  end
+  out[#out + 1] = '\\end{identifierindex}'
+  return table.concat(out, '\n')
+end
+
+local function fragment_names()
+  local out = {}
+  for name, id in pairs(book.ids) do
+    local first = book.by_name[name][1]
+    out[#out + 1] = '\\fragname{' .. id .. '}{' .. latex_escape(name) .. '}{' ..
+                    first.label .. '}{' .. first.number .. '}'
+  end
+  table.sort(out)
+  return table.concat(out, '\n')
+end
+
+-------------------------------------------------------------------------------
+-- Cross-references and equations
+
+-- A reference to a fourth-level heading names the numbered section around
+-- it: LaTeX numbers sections to the third level only (tools/book/preamble.tex).
+local function crossref(cite)
+  local id, kind, target = book:reference(cite)
+  if not id then return nil end
+  if kind == 'eq' then
+    return pandoc.RawInline('latex', '\\hyperref[' .. id .. ']{Equation~(\\ref*{' ..
+                            id .. '})}')
+  end
+  local text = '\\hyperref[' .. id .. ']{' .. target.kind .. '~\\ref*{' .. id .. '}}'
+  if kind == 'fig' or kind == 'tbl' then
+    text = '\\floatcite{' .. id .. '}' .. text   -- where a float is first cited
+  end
+  return pandoc.RawInline('latex', text)
+end
+
+local function number_equations(inlines)
+  return fragments.number_equations(inlines, function(math, label)
+    return pandoc.RawInline('latex', '\\begin{equation}' .. math.text ..
+                            '\\label{' .. label .. '}\\end{equation}')
+  end)
+end
+
+-------------------------------------------------------------------------------
+
+function Pandoc(doc)
+  local rendered = 0
+  book = fragments.read(doc, fail)
+  local files = {}
+  for _, file in ipairs(PANDOC_STATE.input_files) do files[#files + 1] = file end
+  book:cross_check(files)
+
+  doc = doc:walk({
+    Inlines = number_equations,
+  })
+  doc = doc:walk({
+    Cite = crossref,
+    Str = function(s)
+      -- `<<` in T1-encoded text is a guillemet ligature: break it up.
+      if not s.text:find('@<<', 1, true) then return nil end
+      local parts = {}
+      for i, piece in ipairs(split_on(s.text, '@<<')) do
+        if i > 1 then parts[#parts + 1] = pandoc.RawInline('latex', '<{}<') end
+        if piece ~= '' then parts[#parts + 1] = pandoc.Str(piece) end
+      end
+      return parts
+    end,
+    Code = function(c)
+      local sample = render_sample(c)
+      if sample then return sample end
+      if c.text:find('@<<', 1, true) then c.text = fragments.unescape_noweb(c.text) end
+      if c.text:find('^', 1, true) then
+        return pandoc.RawInline('latex', code_carets(
+          pandoc.write(pandoc.Pandoc({pandoc.Plain({c})}), 'latex')))
+      end
+      return c
+    end,
+    CodeBlock = function(block)
+      if fragments.is_chunk_block(block) then
+        rendered = rendered + 1  -- this walk meets chunks in the order read()
+        return render_chunk(book.chunks[rendered])
+      end
+      return render_plain_code(block)
+    end,
+    Para = function(para)
+      if fragments.is_figure(para) then
+        return pandoc.RawBlock('latex', short_caption(
+          pandoc.write(pandoc.Pandoc({para}), 'latex')))
+      end
+      local only = #para.content == 1 and para.content[1]
+      if only and only.t == 'RawInline' and only.text:match('^\\fragheaderline') then
+        return pandoc.RawBlock('latex', '\\fragheadersample{' .. only.text .. '}')
+      end
+    end,
+    RawBlock = function(raw)
+      if raw.format == 'latex' and raw.text:find('\\begin{figure}', 1, true) then
+        raw.text = short_caption(raw.text)
+        return raw
+      end
+    end,
+  })
+  if #book.missing > 0 then
+    fail('references to undefined labels: ' .. table.concat(book.missing, ', '))
+  end
+
+  -- LaTeX numbers the chapters after \appendix A, B, ...: put it before the
+  -- first appendix (a level-1 header of class appendix).
+  for i, block in ipairs(doc.blocks) do
+    if block.t == 'Header' and block.level == 1 and block.classes:includes('appendix') then
+      doc.blocks:insert(i, pandoc.RawBlock('latex', '\\appendix'))
+      break
+    end
+  end
+  table.insert(doc.blocks, 1, pandoc.RawBlock('latex', fragment_names()))
+  doc.blocks:insert(pandoc.RawBlock('latex', '\\backmatter'))
+  if doc.meta.bibliography then
+    -- pandoc's citeproc, run after this filter, fills the div with id refs.
+    doc.blocks:insert(pandoc.Header(1, 'References', pandoc.Attr('references',
+                                                                 {'unnumbered'})))
+    doc.blocks:insert(pandoc.RawBlock('latex', '\\markboth{References}{References}'))
+    doc.blocks:insert(pandoc.Div({}, pandoc.Attr('refs')))
+  end
+  doc.blocks:insert(pandoc.RawBlock('latex', fragment_index()))
+  doc.blocks:insert(pandoc.RawBlock('latex', identifier_index()))
+  return doc
+end

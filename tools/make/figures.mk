@@ -1,0 +1,61 @@
+# make figures: the book's rendered figures. Chapter 8 tangles the figure
+# program, render/figures.cpp, like the benchmark of Appendix A (roots outside
+# lrt/ are not part of liblrt.a). The rule builds the library as of the last
+# chapter, always with Float as float (the precision the figures show, whatever
+# FLOAT says), compiles the program against it and runs it from the
+# repository's root: it writes every rendered figure into figures/ as PNG,
+# at the size at which the book prints it (300 pixels per inch or more).
+# Then it turns the committed measurements figures/data/bvhbench-levels.json
+# (see figures/data/README.md) into the table figures/bvh-bench.dat, which
+# the book's plot of the BVH benchmark reads with pgfplots when it is woven.
+#
+# make check-figures: renders every figure again, in memory, and compares it
+# with the committed PNG within a tolerance (render/figures.cpp, "Running and
+# Checking"), and checks that the committed table is the one the measurements
+# give; CI runs it, so that the figures cannot drift from the code or data.
+#
+# make bench-levels: remeasures figures/data/bvhbench-levels.json (the bench of
+# Appendix A on the bunny subdivided 0 to 4 times; a few minutes). It needs the
+# shared generator: BENCH_GENERATOR=/path/to/gen_bench_data.py if it is not at
+# ../shared/bench/.
+#
+# The book itself never renders: it includes the committed files.
+
+FIGURES_DIR := $(BUILD)/float/asof/$(LAST)
+FIGURES_BIN := $(FIGURES_DIR)/render/figures
+FIGURES_CXXFLAGS := -std=c++17 -O2 -g -ffp-contract=off -Wall -Wextra -Werror
+FIGURES_ASOF := $(ASOF) ASOF=$(LAST) FLOAT= SANITIZE=
+BENCH_LEVELS_DATA := $(BUILD)/bench-levels
+BENCH_LEVELS_JSON := figures/data/bvhbench-levels.json
+
+.PHONY: figures figures-build check-figures bench-levels
+
+figures-build: $(LINTED)
+	$(Q)$(FIGURES_ASOF) tangle
+	$(Q)$(FIGURES_ASOF) -j$(JOBS) lib
+	@mkdir -p $(dir $(FIGURES_BIN))
+	$(call say,CXX,render/figures.cpp)
+	$(Q)$(CXX) $(FIGURES_CXXFLAGS) -I$(FIGURES_DIR)/src \
+	    $(FIGURES_DIR)/src/render/figures.cpp $(FIGURES_DIR)/liblrt.a \
+	    -o $(FIGURES_BIN)
+
+BENCH_TABLE := figures/bvh-bench.dat
+
+figures: figures-build
+	$(FIGURES_BIN) --out figures
+	python3 tools/bench/table.py $(BENCH_LEVELS_JSON) > $(BENCH_TABLE)
+
+check-figures: figures-build
+	$(FIGURES_BIN) --check figures
+	@python3 tools/bench/table.py $(BENCH_LEVELS_JSON) | cmp -s - $(BENCH_TABLE) || \
+	    { echo "check-figures: $(BENCH_TABLE) is not the table of" \
+	           "$(BENCH_LEVELS_JSON); run make figures and commit it" >&2; exit 1; }
+	@echo "$(BENCH_TABLE)      ok: the table of $(BENCH_LEVELS_JSON)"
+
+bench-levels: bench-build
+	python3 $(BENCH_GENERATOR) --out $(BENCH_LEVELS_DATA) --levels 0,1,2,3,4
+	@mkdir -p $(dir $(BENCH_LEVELS_JSON))
+	$(BENCH_BIN) $(foreach l,0 1 2 3 4,--mesh $(BENCH_LEVELS_DATA)/bunny_L$(l).ply) \
+	    --rays $(BENCH_LEVELS_DATA)/rays_primary.bin \
+	    --rays $(BENCH_LEVELS_DATA)/rays_incoherent.bin \
+	    --methods sah --passes 3 --builds 3 --json $(BENCH_LEVELS_JSON)

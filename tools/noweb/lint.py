@@ -1,0 +1,222 @@
+#!/usr/bin/env python3
+"""Check that chapters are valid for both noweb and pandoc, with file:line errors.
+
+    tools/noweb/lint.py [--book] CHAPTER.md...     (in chapter order)
+
+--book also checks the chapter file names that the build relies on.
+
+The rules come from what goes wrong silently otherwise (see DESIGN.md, section
+3): notangle drops a whole file on an unescaped <<, reads `a << 2 >> 1` as a
+fragment use, turns a missing @ into code that swallows the following prose,
+and only warns about undefined fragments.
+"""
+import os
+import re
+import sys
+from collections import defaultdict
+
+MAX_CODE_COLUMNS = 80
+FENCE = re.compile(r'^(```|~~~)')
+DEFINITION = re.compile(r'^<<(.+)>>=\s*$')
+USE_LINE = re.compile(r'^\s*<<(.+?)>>\s*$')
+UNESCAPED_OPEN = re.compile(r'(?<!@)<<')
+CHUNK_END = re.compile(r'^@(\s|$)')
+ROOT_NAME = re.compile(r'^[\w.+-]+(/[\w.+-]+)*\.\w+$')
+
+
+class Chunk:
+    def __init__(self, name, path, line):
+        self.name, self.path, self.line = name, path, line
+        self.uses = []  # (line, name)
+        self.ended = False
+
+
+class Lint:
+    def __init__(self):
+        self.errors = []
+
+    def error(self, path, line, message):
+        self.errors.append('%s:%d: %s' % (path, line, message))
+
+    def parse(self, path):
+        """Returns the chunks of one chapter, reporting format errors."""
+        try:
+            with open(path, encoding='utf-8') as f:
+                lines = f.read().split('\n')
+        except (OSError, UnicodeDecodeError) as e:
+            self.error(path, 0, 'cannot read chapter: %s' % e)
+            return []
+        chunks = []
+        chunk = None          # the code chunk we are in, if any
+        fence_open = None     # line of an open fence in documentation
+        chunk_fence_close = 0 # line of the fence that closes the last chunk
+        for number, text in enumerate(lines, 1):
+            if '\t' in text:
+                self.error(path, number, 'tab character: notangle expands tabs to 8 '
+                           'columns and pandoc to 4; use spaces')
+            if chunk is not None:
+                if CHUNK_END.match(text):
+                    chunk.ended = True
+                    chunk_fence_close = number + 1
+                    following = lines[number] if number < len(lines) else ''
+                    if not FENCE.match(following):
+                        self.error(path, number + 1, 'the fence must close right after '
+                                   'the @ that ends <<%s>> (one chunk per fence)'
+                                   % chunk.name)
+                    chunk = None
+                    fence_open = None
+                    continue
+                if FENCE.match(text):
+                    self.error(path, chunk.line, 'chunk <<%s>> has no closing @ before '
+                               'the fence at line %d' % (chunk.name, number))
+                    chunk = None
+                    fence_open = None
+                    continue
+                self.check_code_line(path, number, text, chunk)
+                continue
+            definition = DEFINITION.match(text)
+            if definition:
+                previous = lines[number - 2] if number >= 2 else ''
+                if fence_open is None or fence_open != number - 1 or \
+                        not previous.startswith('```cpp'):
+                    self.error(path, number, 'chunk <<%s>> must follow a ```cpp fence '
+                               'line directly' % definition.group(1))
+                chunk = Chunk(definition.group(1), path, number)
+                chunks.append(chunk)
+                continue
+            if FENCE.match(text) and number != chunk_fence_close:
+                fence_open = number if fence_open is None else None
+                following = lines[number] if number < len(lines) else ''
+                if fence_open and text.strip() == '```cpp' and \
+                        not DEFINITION.match(following):
+                    self.error(path, number, 'a ```cpp block must hold a chunk '
+                               '(<<Name>>= on its next line); show code that is not '
+                               'part of the library in a ```c++ block')
+            if UNESCAPED_OPEN.search(text):
+                self.error(path, number, 'unescaped << outside code: notangle reads it '
+                           'as a fragment use; write @<<')
+        if chunk is not None:
+            self.error(path, chunk.line, 'chunk <<%s>> is never closed by @' % chunk.name)
+        return chunks
+
+    def check_code_line(self, path, number, text, chunk):
+        shown = text.replace('@<<', '<<')
+        if len(shown) > MAX_CODE_COLUMNS:
+            self.error(path, number, 'code line has %d columns; the book fits %d'
+                       % (len(shown), MAX_CODE_COLUMNS))
+        if not UNESCAPED_OPEN.search(text):
+            return
+        use = USE_LINE.match(text)
+        if use:
+            chunk.uses.append((number, use.group(1)))
+        elif '>>' in text[UNESCAPED_OPEN.search(text).start():]:
+            self.error(path, number, 'noweb reads << ... >> on one line as a fragment '
+                       'use: write @<< in code, and put a fragment use on its own line')
+
+    def check_book(self, chapters):
+        """Cross-chapter rules: every use defined no later than it is used, every
+        fragment reachable from a root, every root defined in one chapter."""
+        by_name = defaultdict(list)
+        for order, chunks in enumerate(chapters):
+            for chunk in chunks:
+                by_name[chunk.name].append((order, chunk))
+        used = set()
+        for order, chunks in enumerate(chapters):
+            for chunk in chunks:
+                for line, name in chunk.uses:
+                    used.add(name)
+                    definitions = by_name.get(name)
+                    if not definitions:
+                        self.error(chunk.path, line, 'use of undefined fragment <<%s>>'
+                                   % name)
+                    elif definitions[0][0] > order:
+                        self.error(chunk.path, line, 'fragment <<%s>> is first defined in '
+                                   'a later chapter (%s:%d), so the code as of this '
+                                   'chapter cannot tangle' % (name, definitions[0][1].path,
+                                                              definitions[0][1].line))
+        for name, definitions in by_name.items():
+            first = definitions[0][1]
+            if name in used:
+                continue
+            if not ROOT_NAME.match(name):
+                self.error(first.path, first.line, 'fragment <<%s>> is defined but never '
+                           'used, and its name is not a file path, so no root reaches it'
+                           % name)
+                continue
+            paths = sorted({chunk.path for _, chunk in definitions})
+            if len(paths) > 1:
+                self.error(first.path, first.line, 'root <<%s>> is defined in more than '
+                           'one chapter: %s' % (name, ', '.join(paths)))
+
+
+LABEL_DEFINITION = re.compile(r'\{#((?:sec|fig|eq|tbl):[A-Za-z0-9_-]+)')
+LABEL_REFERENCE = re.compile(r'(?<![@\w])@((?:sec|fig|eq|tbl):[A-Za-z0-9_-]*[A-Za-z0-9])')
+
+
+def check_references(lint, paths):
+    """A reference to a label of a later chapter: a build or an exercise kit of
+    the chapters up to this one has no such label and could not weave. Name
+    the later chapter in words instead."""
+    defined = {}
+    texts = []
+    for order, path in enumerate(paths):
+        try:
+            with open(path, encoding='utf-8') as f:
+                text = f.read()
+        except OSError:
+            text = ''
+        texts.append(text)
+        for number, line in enumerate(text.splitlines(), 1):
+            for m in LABEL_DEFINITION.finditer(line):
+                defined.setdefault(m.group(1), (order, path, number))
+    for order, path in enumerate(paths):
+        for number, line in enumerate(texts[order].splitlines(), 1):
+            for m in LABEL_REFERENCE.finditer(line):
+                where = defined.get(m.group(1))
+                if where and where[0] > order:
+                    lint.error(path, number, 'reference to %s, which a later chapter '
+                               'defines (%s:%d): the chapters up to this one could not '
+                               'be woven without it; name that chapter in words'
+                               % (m.group(1), where[1], where[2]))
+
+
+CHAPTER_NAME = re.compile(r'^(\d\d)-[a-z0-9-]+\.md$')
+
+
+def check_names(lint, paths):
+    """The build orders chapters, and cuts the code as of chapter N, by the
+    two-digit number that starts each file name: a chapter without one would
+    silently drop out of the build."""
+    seen = {}
+    for path in paths:
+        match = CHAPTER_NAME.match(os.path.basename(path))
+        if not match:
+            lint.error(path, 0, 'a chapter file is named NN-slug.md (two digits, then '
+                       'lower-case words joined by -)')
+        elif match.group(1) in seen:
+            lint.error(path, 0, 'chapter number %s is also used by %s'
+                       % (match.group(1), seen[match.group(1)]))
+        else:
+            seen[match.group(1)] = path
+
+
+def main(args):
+    book = args[:1] == ['--book']
+    paths = args[1:] if book else args
+    if not paths:
+        sys.exit('usage: lint.py [--book] CHAPTER.md...')
+    lint = Lint()
+    if book:
+        check_names(lint, paths)
+    chapters = [lint.parse(path) for path in paths]
+    lint.check_book(chapters)
+    check_references(lint, paths)
+    for message in lint.errors:
+        print(message, file=sys.stderr)
+    if lint.errors:
+        print('lint: %d error(s)' % len(lint.errors), file=sys.stderr)
+        sys.exit(1)
+
+
+if __name__ == '__main__':
+    main(sys.argv[1:])

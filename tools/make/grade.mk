@@ -1,4 +1,4 @@
-# Classroom grading (tools/grading/grade.py; DESIGN.md section 7, docs/grading.md).
+# Classroom grading (tools/grading/grade.py; docs/grading.md).
 # Included by the Makefile, so this runs from the repository root:
 #
 #   make grade SUBMISSION=path [CHAPTERS="05"] [OUT=dir] [GRADE_FLAGS="..."]

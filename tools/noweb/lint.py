@@ -5,8 +5,8 @@
 
 --book also checks the chapter file names that the build relies on.
 
-The rules come from what goes wrong silently otherwise (see DESIGN.md, section
-3): notangle drops a whole file on an unescaped <<, reads `a << 2 >> 1` as a
+The rules (the README's "Writing a chapter") come from what goes wrong
+silently otherwise: notangle drops a whole file on an unescaped <<, reads `a << 2 >> 1` as a
 fragment use, turns a missing @ into code that swallows the following prose,
 and only warns about undefined fragments.
 """

@@ -1,0 +1,2 @@
+"""Running the tests: GoogleTest binaries and the tools' own Python tests,
+side by side on every core."""

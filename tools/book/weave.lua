@@ -36,21 +36,13 @@ package.path = pandoc.path.directory(PANDOC_SCRIPT_FILE) .. '/?.lua;' .. package
 local fragments = require('fragments')
 local edition = require('edition')
 local indexes = require('indexes')
+local latex_escape = require('latex_text').escape
 
 local book   -- what tools/book/fragments.lua read
 
 local function fail(message)
   io.stderr:write('weave.lua: ' .. message .. '\n')
   os.exit(1)
-end
-
-local function latex_escape(s)
-  return (s:gsub('[\\{}$&#^_%%~<>]', {
-    ['\\'] = '\\textbackslash{}', ['{'] = '\\{', ['}'] = '\\}', ['$'] = '\\$',
-    ['&'] = '\\&', ['#'] = '\\#', ['^'] = '\\textasciicircum{}', ['_'] = '\\_',
-    ['%'] = '\\%', ['~'] = '\\textasciitilde{}', ['<'] = '\\textless{}',
-    ['>'] = '\\textgreater{}',
-  }))
 end
 
 -- pandoc writes a code caret as \^{}, the circumflex accent over nothing,

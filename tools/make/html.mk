@@ -14,7 +14,7 @@ html: $(HTML_OUT)/index.html
 
 $(HTML_OUT)/index.html: book.md $(wildcard references.bib) $(CHAPTERS) tools/book/html_site.py \
                         $(wildcard tools/book/html*.lua) tools/book/fragments.lua \
-                        tools/book/exercises.lua tools/book/edition.lua \
+                        tools/book/exercises.lua tools/book/latex_text.lua tools/book/edition.lua \
                         tools/book/indexes.lua \
                         tools/book/tikz-preamble.tex $(wildcard tools/book/web/*) \
                         $(wildcard figures/*) | $(LINTED)

@@ -392,6 +392,20 @@ class WeaveTest(unittest.TestCase):
         return run(['pandoc', chapter, '--lua-filter', os.path.join(TOOLS, 'book', 'weave.lua')] +
                    list(options) + ['-t', 'latex'], cwd=tmp)
 
+    def test_an_exercise_escapes_a_fragment_name_as_a_chunk_header_does(self):
+        # tools/book/exercises.lua and weave.lua share tools/book/latex_text.lua:
+        # a ^ in a name is the ASCII character in both, not an accent over nothing.
+        tmp = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, tmp)
+        chapter = os.path.join(tmp, '01-exercise.md')
+        with open(chapter, 'w') as f:
+            f.write('# Ch\n\n::: {.exercise #ex-1.1 points=1 title="T" '
+                    'fragments="Square of x^2"}\nDo it.\n:::\n')
+        result = run(['pandoc', chapter, '--lua-filter',
+                      os.path.join(TOOLS, 'book', 'exercises.lua'), '-t', 'latex'], cwd=tmp)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn('\\fragmentname{Square of x\\textasciicircum{}2}{}', result.stdout)
+
     def test_chunks_are_numbered_and_linked(self):
         with open(os.path.join(LINT_CASES, 'good.md')) as f:
             result = self.weave(f.read())

@@ -19,14 +19,8 @@ are handled there like any other. tools/exercises/markup.py checks the attribute
 (make lint); this filter only shows them.
 ]]
 
-local function latex_escape(s)
-  return (s:gsub('[\\{}$&#^_%%~<>]', {
-    ['\\'] = '\\textbackslash{}', ['{'] = '\\{', ['}'] = '\\}', ['$'] = '\\$',
-    ['&'] = '\\&', ['#'] = '\\#', ['^'] = '\\^{}', ['_'] = '\\_',
-    ['%'] = '\\%', ['~'] = '\\textasciitilde{}', ['<'] = '\\textless{}',
-    ['>'] = '\\textgreater{}',
-  }))
-end
+package.path = pandoc.path.directory(PANDOC_SCRIPT_FILE) .. '/?.lua;' .. package.path
+local latex_escape = require('latex_text').escape
 
 local function markdown_blocks(text)
   return pandoc.read(text, 'markdown').blocks

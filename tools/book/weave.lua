@@ -1,7 +1,10 @@
 --[[
 weave.lua: the pandoc filter that turns lrt's chapters into a literate book,
 typeset with LaTeX. What the book's fragments are, how they are numbered,
-used and continued, is read by tools/book/fragments.lua; this filter typesets it.
+used and continued, is read by tools/book/fragments.lua; what the indexes and
+each fragment's footer list, by tools/book/indexes.lua; tools/book/edition.lua
+walks the document as the web edition (tools/book/html.lua) does, and this
+filter typesets what it meets in LaTeX.
 
 Each chunk gets a `<Name> =` or `<Name> +=` header with its number,
 highlighted C++, fragment uses shown as `<Name 2.3>` and linked to their
@@ -31,21 +34,15 @@ writer, so the highlighting macros come from tools/weave.sh.
 
 package.path = pandoc.path.directory(PANDOC_SCRIPT_FILE) .. '/?.lua;' .. package.path
 local fragments = require('fragments')
+local edition = require('edition')
+local indexes = require('indexes')
+local latex_escape = require('latex_text').escape
 
 local book   -- what tools/book/fragments.lua read
 
 local function fail(message)
   io.stderr:write('weave.lua: ' .. message .. '\n')
   os.exit(1)
-end
-
-local function latex_escape(s)
-  return (s:gsub('[\\{}$&#^_%%~<>]', {
-    ['\\'] = '\\textbackslash{}', ['{'] = '\\{', ['}'] = '\\}', ['$'] = '\\$',
-    ['&'] = '\\&', ['#'] = '\\#', ['^'] = '\\textasciicircum{}', ['_'] = '\\_',
-    ['%'] = '\\%', ['~'] = '\\textasciitilde{}', ['<'] = '\\textless{}',
-    ['>'] = '\\textgreater{}',
-  }))
 end
 
 -- pandoc writes a code caret as \^{}, the circumflex accent over nothing,
@@ -74,16 +71,12 @@ local function ref(chunk)
   return '\\chunkref{' .. chunk.label .. '}{' .. chunk.number .. '}'
 end
 
-local function ref_list(list)
-  local seen, parts = {}, {}
-  for _, chunk in ipairs(list) do
-    if not seen[chunk] then
-      seen[chunk] = true
-      parts[#parts + 1] = ref(chunk)
-    end
-  end
-  return table.concat(parts, ', ')
+local function file_name(file)
+  return '\\texttt{' .. latex_escape(file) .. '}'
 end
+
+-- Page references to chunks, and a fragment's file or users, for footers and indexes.
+local ref_list, destination = indexes.lister(ref, file_name)
 
 -- Highlighted code as LaTeX, and its number of lines.
 local function highlight(lines)
@@ -97,19 +90,18 @@ local function highlight(lines)
 end
 
 local function footer(chunk)
-  local notes = {}
-  if book:is_root(chunk.name) then
-    notes[#notes + 1] = '\\fragnote{File}{\\texttt{tangled/' .. latex_escape(chunk.name)
-                        .. '}}'
-  else
-    notes[#notes + 1] = '\\fragnote{Used in}{' .. ref_list(book.uses_of[chunk.name]) .. '}'
+  local notes, about = {}, indexes.notes(book, chunk)
+  notes[#notes + 1] = '\\fragnote{' .. (about.file and 'File' or 'Used in') .. '}{' ..
+                      destination(about) .. '}'
+  if about.continues then
+    notes[#notes + 1] = '\\fragnote{Continues}{' .. ref(about.continues) .. '}'
   end
-  local previous, next = book:neighbours(chunk)
-  if previous then notes[#notes + 1] = '\\fragnote{Continues}{' .. ref(previous) .. '}' end
-  if next then notes[#notes + 1] = '\\fragnote{Continued in}{' .. ref(next) .. '}' end
-  if #chunk.defs > 0 then
+  if about.continued_in then
+    notes[#notes + 1] = '\\fragnote{Continued in}{' .. ref(about.continued_in) .. '}'
+  end
+  if #about.defines > 0 then
     local ids = {}
-    for _, id in ipairs(chunk.defs) do
+    for _, id in ipairs(about.defines) do
       ids[#ids + 1] = '\\identdef{' .. latex_escape(id) .. '}'
     end
     notes[#notes + 1] = '\\fragnote{Defines}{' .. table.concat(ids, ', ') .. '}'
@@ -127,24 +119,21 @@ local function render_chunk(chunk)
     footer(chunk) .. '\\end{fragment}'}, '\n'))
 end
 
-local function render_plain_code(block)
-  local lines = fragments.split_lines(block.text)
-  for i, line in ipairs(lines) do lines[i] = fragments.unescape_noweb(line) end
-  local code = pandoc.CodeBlock(table.concat(lines, '\n'), block.attr)
+local function render_plain_code(code)
   return pandoc.RawBlock('latex', code_carets(pandoc.write(pandoc.Pandoc({code}), 'latex')))
 end
 
--- A fragment shown as an example in the prose (see the comment at the top).
-local function render_sample(code)
-  local class = fragments.sample_class(code)
-  if not class then return nil end
-  local first = book:fragment(code.text, 'the example `' .. code.text .. '`{.' .. class .. '}')
-  if class == 'fragment-number' then
-    return pandoc.RawInline('latex', '\\hyperref[' .. first.label .. ']{' ..
-                            first.number .. '}')
-  elseif class == 'fragment-use' then
-    return pandoc.RawInline('latex', '\\fraguse{' .. book.ids[first.name] .. '}')
-  end
+-- A fragment shown as an example in the prose (see the comment at the top),
+-- given its first chunk.
+local function sample_number(first)
+  return pandoc.RawInline('latex', '\\hyperref[' .. first.label .. ']{' .. first.number .. '}')
+end
+
+local function sample_use(first)
+  return pandoc.RawInline('latex', '\\fraguse{' .. book.ids[first.name] .. '}')
+end
+
+local function sample_header(first)
   return pandoc.RawInline('latex', '\\fragheaderline{' .. book.ids[first.name] .. '}{' ..
                           first.label .. '}{' .. first.number .. '}{def}')
 end
@@ -203,15 +192,10 @@ end
 
 local function fragment_index()
   local out = {'\\begin{fragmentindex}'}
-  for _, name in ipairs(fragments.sorted_keys(book.by_name)) do
-    local entry = '\\fragindexentry{' .. book.ids[name] .. '}{' ..
-                  ref_list(book.by_name[name]) .. '}{'
-    if book:is_root(name) then
-      entry = entry .. 'file \\texttt{tangled/' .. latex_escape(name) .. '}'
-    else
-      entry = entry .. 'used in ' .. ref_list(book.uses_of[name])
-    end
-    out[#out + 1] = entry .. '}'
+  for _, entry in ipairs(indexes.fragments(book)) do
+    out[#out + 1] = '\\fragindexentry{' .. book.ids[entry.name] .. '}{' ..
+                    ref_list(entry.chunks) .. '}{' .. (entry.file and 'file ' or 'used in ') ..
+                    destination(entry) .. '}'
   end
   out[#out + 1] = '\\end{fragmentindex}'
   return table.concat(out, '\n')
@@ -219,11 +203,10 @@ end
 
 local function identifier_index()
   local out = {'\\begin{identifierindex}'}
-  for _, id in ipairs(fragments.sorted_keys(book.identifiers)) do
-    local uses = book:identifier_uses(id)
-    out[#out + 1] = '\\identindexentry{' .. latex_escape(id) .. '}{' ..
-                    ref_list(book.identifiers[id]) .. '}{' ..
-                    (#uses > 0 and ('used in ' .. ref_list(uses)) or '') .. '}'
+  for _, entry in ipairs(indexes.identifiers(book)) do
+    out[#out + 1] = '\\identindexentry{' .. latex_escape(entry.id) .. '}{' ..
+                    ref_list(entry.chunks) .. '}{' ..
+                    (#entry.used_in > 0 and ('used in ' .. ref_list(entry.used_in)) or '') .. '}'
   end
   out[#out + 1] = '\\end{identifierindex}'
   return table.concat(out, '\n')
@@ -245,9 +228,7 @@ end
 
 -- A reference to a fourth-level heading names the numbered section around
 -- it: LaTeX numbers sections to the third level only (tools/book/preamble.tex).
-local function crossref(cite)
-  local id, kind, target = book:reference(cite)
-  if not id then return nil end
+local function crossref(id, kind, target)
   if kind == 'eq' then
     return pandoc.RawInline('latex', '\\hyperref[' .. id .. ']{Equation~(\\ref*{' ..
                             id .. '})}')
@@ -259,74 +240,57 @@ local function crossref(cite)
   return pandoc.RawInline('latex', text)
 end
 
-local function number_equations(inlines)
-  return fragments.number_equations(inlines, function(math, label)
-    return pandoc.RawInline('latex', '\\begin{equation}' .. math.text ..
-                            '\\label{' .. label .. '}\\end{equation}')
-  end)
+local function number_equation(math, label)
+  return pandoc.RawInline('latex', '\\begin{equation}' .. math.text ..
+                          '\\label{' .. label .. '}\\end{equation}')
+end
+
+-- `<<` in T1-encoded text is a guillemet ligature: break it up.
+local function break_guillemets(s)
+  if not s.text:find('@<<', 1, true) then return nil end
+  local parts = {}
+  for i, piece in ipairs(split_on(s.text, '@<<')) do
+    if i > 1 then parts[#parts + 1] = pandoc.RawInline('latex', '<{}<') end
+    if piece ~= '' then parts[#parts + 1] = pandoc.Str(piece) end
+  end
+  return parts
+end
+
+local function inline_code(c)
+  if c.text:find('^', 1, true) then
+    return pandoc.RawInline('latex', code_carets(
+      pandoc.write(pandoc.Pandoc({pandoc.Plain({c})}), 'latex')))
+  end
+  return c
+end
+
+local function figure(para)
+  return pandoc.RawBlock('latex', short_caption(pandoc.write(pandoc.Pandoc({para}), 'latex')))
+end
+
+local function sample_paragraph(text)
+  if text:match('^\\fragheaderline') then
+    return pandoc.RawBlock('latex', '\\fragheadersample{' .. text .. '}')
+  end
+end
+
+local function figure_caption(raw)
+  if raw.format == 'latex' and raw.text:find('\\begin{figure}', 1, true) then
+    raw.text = short_caption(raw.text)
+    return raw
+  end
 end
 
 -------------------------------------------------------------------------------
 
 function Pandoc(doc)
-  local rendered = 0
-  book = fragments.read(doc, fail)
-  local files = {}
-  for _, file in ipairs(PANDOC_STATE.input_files) do files[#files + 1] = file end
-  book:cross_check(files)
-
-  doc = doc:walk({
-    Inlines = number_equations,
-  })
-  doc = doc:walk({
-    Cite = crossref,
-    Str = function(s)
-      -- `<<` in T1-encoded text is a guillemet ligature: break it up.
-      if not s.text:find('@<<', 1, true) then return nil end
-      local parts = {}
-      for i, piece in ipairs(split_on(s.text, '@<<')) do
-        if i > 1 then parts[#parts + 1] = pandoc.RawInline('latex', '<{}<') end
-        if piece ~= '' then parts[#parts + 1] = pandoc.Str(piece) end
-      end
-      return parts
-    end,
-    Code = function(c)
-      local sample = render_sample(c)
-      if sample then return sample end
-      if c.text:find('@<<', 1, true) then c.text = fragments.unescape_noweb(c.text) end
-      if c.text:find('^', 1, true) then
-        return pandoc.RawInline('latex', code_carets(
-          pandoc.write(pandoc.Pandoc({pandoc.Plain({c})}), 'latex')))
-      end
-      return c
-    end,
-    CodeBlock = function(block)
-      if fragments.is_chunk_block(block) then
-        rendered = rendered + 1  -- this walk meets chunks in the order read()
-        return render_chunk(book.chunks[rendered])
-      end
-      return render_plain_code(block)
-    end,
-    Para = function(para)
-      if fragments.is_figure(para) then
-        return pandoc.RawBlock('latex', short_caption(
-          pandoc.write(pandoc.Pandoc({para}), 'latex')))
-      end
-      local only = #para.content == 1 and para.content[1]
-      if only and only.t == 'RawInline' and only.text:match('^\\fragheaderline') then
-        return pandoc.RawBlock('latex', '\\fragheadersample{' .. only.text .. '}')
-      end
-    end,
-    RawBlock = function(raw)
-      if raw.format == 'latex' and raw.text:find('\\begin{figure}', 1, true) then
-        raw.text = short_caption(raw.text)
-        return raw
-      end
-    end,
-  })
-  if #book.missing > 0 then
-    fail('references to undefined labels: ' .. table.concat(book.missing, ', '))
-  end
+  book = edition.read(doc, fail)
+  doc = edition.typeset(doc, book, {
+    equation = number_equation, reference = crossref, sample_number = sample_number,
+    sample_use = sample_use, sample_header = sample_header, inline_code = inline_code,
+    chunk = render_chunk, plain_code = render_plain_code, figure = figure,
+    sample_paragraph = sample_paragraph, Str = break_guillemets, RawBlock = figure_caption,
+  }, fail)
 
   -- LaTeX numbers the chapters after \appendix A, B, ...: put it before the
   -- first appendix (a level-1 header of class appendix).

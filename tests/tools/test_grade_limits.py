@@ -21,7 +21,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))
 import test_grade as tg  # noqa: E402
-from tools.grading import build as grade_build, grade  # noqa: E402
+from tools.grading import build as grade_build, judging  # noqa: E402
 
 # ex-5.10's region, after the book's solution lines.
 SOLUTION = 'Float invD = invDir[i];\nint isNeg = dirIsNeg[i];'
@@ -73,7 +73,7 @@ class CacheKeyTest(unittest.TestCase):
             f.write(b'{"test": "A.a", "passed": true}\n'
                     b'{"test": "A.b", "failures": ["\xff"]}\n'
                     b'{"test": "A.c", "passed": false}\n')
-        self.assertEqual(sorted(grade.read_report(path)), ['A.a', 'A.c'])
+        self.assertEqual(sorted(judging.read_report(path)), ['A.a', 'A.c'])
 
 
 class PeakMemory:

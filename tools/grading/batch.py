@@ -17,7 +17,7 @@ import time
 
 from tools.grading import build as grade_build
 from tools.grading.files import atomic_write, write_private
-from tools.grading.report import first_line
+from tools.grading.feedback import first_line
 from tools.grading.selection import graded_chapters, graded_exercises, load_book
 
 # The grader that grades each submission, as a process of its own.

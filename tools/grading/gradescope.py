@@ -33,7 +33,8 @@ from tools.grading.files import replacing  # noqa: E402
 
 TOOLS = ['__init__.py', 'deps.sh', 'grading/__init__.py', 'grading/grade.py', 'grading/batch.py',
          'grading/build.py', 'grading/diagnostics.py', 'grading/files.py', 'grading/judging.py',
-         'grading/report.py', 'grading/selection.py', 'grading/structure.py',
+         'grading/feedback.py', 'grading/records.py', 'grading/report.py',
+         'grading/selection.py', 'grading/structure.py',
          'grading/submission.py', 'grading/sandbox.py', 'grading/compile_wall.py',
          'exercises/__init__.py',
          'exercises/markup.py', 'exercises/course.py', 'noweb/__init__.py', 'noweb/tangle.py',

@@ -1,7 +1,7 @@
 """Judging one exercise: the chapter's judge (the book's code and tests,
 tests/calls/judge.cpp) runs the exercise's tests against a worker that
 holds the student's code, and the tests' statuses come from the judge's
-report (read_report); verdicts are kept in the cache by what decided them
+records (records.py); verdicts are kept in the cache by what decided them
 (judge_exercise)."""
 import hashlib
 import json
@@ -11,9 +11,13 @@ import subprocess
 import tempfile
 import time
 
+from tools.grading import records
 from tools.grading import sandbox
 from tools.grading.files import atomic_write, write_private
 
+# The form of the verdicts kept in the cache (part of their key): verdicts
+# kept by a grader that read the judge otherwise are not taken.
+RECORDS = 'records-1'
 
 def judge_exercise(args, judge, worker, results, secret):
     """Runs the judge on the tests of one exercise (results) against its
@@ -22,40 +26,25 @@ def judge_exercise(args, judge, worker, results, secret):
     cache) on the same cases are the same: they are kept, and a submission
     whose code for the exercise is the same as an earlier one's gets them
     without running again (except timeouts, which depend on the machine)."""
-    key = hashlib.sha256('\0'.join([judge, worker, str(secret), repr(args.time_limit),
-                                     str(args.memory_limit), str(args.cpu_limit)] +
+    key = hashlib.sha256('\0'.join([RECORDS, judge, worker, str(secret),
+                                     repr(args.time_limit), str(args.memory_limit),
+                                     str(args.cpu_limit)] +
                                     [r.full for r in results]).encode()).hexdigest()[:32]
     kept = os.path.join(args.cache, 'verdicts-%s.json' % key)
     try:
         with open(kept, encoding='utf-8') as f:
-            for r, (status, failures, threw) in zip(results, json.load(f)):
-                r.status, r.failures, r.threw = status, failures, threw
-                r.message = '\n'.join(failures)
+            verdicts = [(v, records.failures(fs)) for v, fs in json.load(f)]
+        if len(verdicts) != len(results) or any(v not in records.VERDICTS
+                                                for v, _ in verdicts):
+            raise ValueError('not the verdicts of these tests')
+        for r, (verdict, failures) in zip(results, verdicts):
+            r.judged(verdict, failures)
         return
     except (OSError, ValueError, TypeError):
         pass
     run_judge(args, judge, worker, results, secret)
     if all(r.status in ('PASS', 'FAIL', 'CRASH', 'OOM') for r in results):
-        atomic_write(kept, json.dumps([[r.status, r.failures, r.threw] for r in results]))
-
-
-def read_report(path):
-    """{test: its line} from the judge's report, a line of JSON per test. A
-    line that cannot be read (the judge stopped in the middle of it) costs
-    its own test only: that test has no verdict, the others keep theirs."""
-    found = {}
-    try:
-        with open(path, 'rb') as f:
-            lines = f.readlines()
-    except OSError:
-        return found
-    for line in lines:
-        try:
-            test = json.loads(line.decode('utf-8'))
-            found[str(test['test'])] = test
-        except (ValueError, KeyError, TypeError):
-            continue
-    return found
+        atomic_write(kept, json.dumps([[r.status, r.failures] for r in results]))
 
 
 def run_judge(args, judge, worker, results, secret):
@@ -116,19 +105,11 @@ def judge_tests(args, judge, argv_file, secret_file, base, results, deadline):
                 'the judge ended with status %d' % proc.returncode
         except subprocess.TimeoutExpired:
             pass
-    found = read_report(report)
+    found = records.read_report(report)
     for r in results:
-        test = found.get(r.full)
-        if test is None:
+        if r.full not in found:
             r.status = 'NOT-RUN' if ended is None else 'TIMEOUT'
             r.message = ended or 'the judge has no test %s' % r.full
             continue
-        r.failures = [str(f) for f in test.get('failures') or []]
-        threw = test.get('threw')
-        r.threw = threw if isinstance(threw, str) else ''
-        if test.get('status') in ('CRASH', 'TIMEOUT', 'OOM'):
-            r.status = test['status']
-        else:
-            r.status = 'PASS' if test.get('passed') is True and not r.failures else 'FAIL'
-        r.message = '\n'.join(r.failures)
+        r.judged(*found[r.full])
 

@@ -1,19 +1,14 @@
 """The grader's outputs for one submission (Report): results.json
 (Gradescope), junit.xml and results.txt, rewritten whole after every
-test; a test's result (Result), and what a student may see of its failure
-(shown_message)."""
+exercise; and a test's result (Result). What they show of a failure is
+feedback.py's to say."""
 import json
 import os
 import re
 import xml.etree.ElementTree as ET
 
+from tools.grading.feedback import first_line, public_text, shown_line, shown_message
 from tools.grading.files import atomic_write
-
-MAX_SHOWN = 4000              # characters of a failure shown
-# Failures that the judge's own code reports (a worker that crashed, hung or
-# ran out of memory) name this file; of a hidden test's, their first words
-# are shown (shown_message).
-JUDGE_SOURCE = 'tests/calls/judge.cpp'
 
 
 class Result:
@@ -22,8 +17,7 @@ class Result:
         self.suite, self.name, self.hidden = suite, name, hidden
         self.max_score, self.hint = max_score, hint
         self.status, self.message = 'NOT-RUN', 'not run yet'
-        self.failures = []   # the judge's failure messages
-        self.threw = ''      # the call whose exception failed the test
+        self.failures = []   # the judge's records of its failures (records.py)
         # The messages of the exercise's own stubs, which a hidden test's
         # failure may show (shown_message).
         self.stubs = frozenset()
@@ -36,71 +30,16 @@ class Result:
     def score(self):
         return self.max_score if self.status == 'PASS' else 0.0
 
-
-def first_line(text):
-    m = re.search(r'C\+\+ exception with description "(.*?)" thrown', text or '', re.S)
-    if m:
-        return ('threw: ' + ' '.join(m.group(1).split()))[:160]
-    lines = [line.strip() for line in (text or '').splitlines()
-             if line.strip() and line.strip() != 'unknown file']
-    if len(lines) > 1 and re.match(r'^\S+:\d+$', lines[0]):   # gtest's file:line
-        return ('%s: %s' % (lines[0], lines[1]))[:160]
-    return lines[0][:160] if lines else ''
+    def judged(self, verdict, failures):
+        """The judge's verdict on the test, and its failures (records.py)."""
+        self.failures = failures
+        self.status = 'FAIL' if verdict == 'PASS' and failures else verdict
+        self.message = '\n'.join(public_text(f) for f in failures)
 
 
 def fence_safe(text):
     """Text that cannot close the Markdown code block it is shown in."""
     return text.replace('`' * 3, '` ` `')
-
-
-def clean(text, limit=MAX_SHOWN):
-    """Text that may come from the student's code (what it threw), as it is
-    shown: printable, and not too long."""
-    text = re.sub(r'[^\x20-\x7e\n\t\u00a0-\uffff]', '?', text or '')
-    return text if len(text) <= limit else text[:limit] + ' [...]'
-
-
-# The judge's words on a call that failed in the worker, as the judge's
-# failure reads them: "tests/calls/judge.cpp:LINE", GoogleTest's "Failed",
-# then "during Call: KIND: DETAIL" (tests/calls/judge.cpp, Kind). Of a hidden
-# test, only "during Call: KIND" is shown: the detail is the code's to choose.
-# Matched from the start: the first "during" is the judge's own.
-WORKER_FAILURE = re.compile(r'%s:\d+\n(?:Failed\n)?(during [A-Za-z_]\w*: (?:the code crashed|'
-                            r'the code took too long|the code ran out of memory|the answer '
-                            r'was refused))(?=:|$)' % re.escape(JUDGE_SOURCE), re.M)
-THROWN = re.compile(r'C\+\+ exception with description "(.*?)" thrown', re.S)
-HIDDEN_CHECK = 'a hidden test failed (its checks are not shown)'
-
-
-def shown_message(result):
-    """What a student may see of a test's failure: everything for a public
-    test. A hidden test's worker saw the test's inputs, so what a student
-    sees of its failure holds nothing that the student's code chose, which
-    could carry them: never the test's checks (the values the code returned)
-    nor what the code threw, a signal or an exit status, only the kind of
-    failure (the code threw, crashed, took too long, ran out of memory) and
-    the call, whose name is public. Only the message of one of the
-    exercise's own stubs is shown as thrown: an unfinished exercise says so,
-    and the code can choose no more than which stub it throws."""
-    if not result.hidden or not result.failures:
-        return clean(result.message)
-    call = result.threw if re.fullmatch(r'[A-Za-z_]\w*', result.threw or '') else ''
-    shown = []
-    for failure in result.failures:
-        thrown = THROWN.search(failure)
-        worker = WORKER_FAILURE.match(failure)
-        if thrown and thrown.group(1) in result.stubs:
-            text = 'threw: ' + thrown.group(1)
-        elif thrown:
-            text = '%sthe code threw an exception (not shown for a hidden test)' % (
-                'during %s: ' % call if call else '')
-        elif worker:
-            text = worker.group(1)
-        else:
-            text = HIDDEN_CHECK
-        if text not in shown:
-            shown.append(text)
-    return clean('\n'.join(shown))
 
 
 class Report:
@@ -164,12 +103,12 @@ class Report:
                 case = ET.SubElement(suite, 'testcase', classname='%s.%s' % (ident, r.suite),
                                      name=r.name)
                 if r.status == 'FAIL':
-                    ET.SubElement(case, 'failure', message=first_line(shown_message(r)),
+                    ET.SubElement(case, 'failure', message=shown_line(r),
                                   type='FAIL').text = shown_message(r)
                 elif r.status == 'NOT-RUN':
                     ET.SubElement(case, 'skipped', message=first_line(r.message))
                 elif r.status != 'PASS':
-                    ET.SubElement(case, 'error', message=first_line(shown_message(r)),
+                    ET.SubElement(case, 'error', message=shown_line(r),
                                   type=r.status).text = shown_message(r)
         return ET.tostring(suites, encoding='unicode') + '\n'
 
@@ -183,7 +122,7 @@ class Report:
             for r in (r for r in self.results if r.exercise == ident):
                 lines.append('    %-13s %5.2f/%-5.2f %s%s  %s' % (
                     r.status, r.score, r.max_score, r.full, ' (hidden)' if r.hidden else '',
-                    first_line(shown_message(r))))
+                    shown_line(r)))
         lines += ['', 'total %.2f / %g' % (total, maximum)]
         return '\n'.join(lines) + '\n'
 

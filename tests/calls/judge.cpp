@@ -9,9 +9,11 @@
 // The worker's FILE lists its command line, one argument a line (the sandbox,
 // its limits and the worker binary); the secret's FILE holds the grading's
 // secret (a decimal number), and the tests' FILE the tests to run, one
-// Suite.Name a line; the results FILE gets a line of JSON per test as it
-// ends. The judge never runs the student's code: it decides every verdict
-// from the worker's answers, and the worker never learns which test asked.
+// Suite.Name a line; the results FILE gets a record per test as it ends, a
+// line of JSON that says the test's verdict and what each failure is
+// (ResultLines), from which the grader decides what a student sees. The
+// judge never runs the student's code: it decides every verdict from the
+// worker's answers, and the worker never learns which test asked.
 //
 // The secret and the tests come in files, which the grader keeps where only
 // its own user can read them, and never on the command line: any process of
@@ -107,18 +109,36 @@ double Now() {
 }
 
 // What went wrong with a call, in words of the judge's own: a failure that a
-// worker caused reads "during Call: KIND: DETAIL". KIND is one of these
-// fixed phrases; DETAIL (a signal, an exit status, a size, a message) the
-// code under test can choose, so where the grader must not show what the
-// code chose (a hidden test, whose worker saw the test's inputs and could
-// put them there), it shows "during Call: KIND" only (tools/grading/grade.py,
-// shown_message, matches these words).
+// worker caused reads "during Call: KIND: DETAIL" on the judge's output.
+// DETAIL (a signal, an exit status, a size, a message) the code under test
+// can choose; the record of the failure (Judged) keeps KIND apart, as a
+// fixed word (FailureWord), so that the grader can show a hidden test's
+// failure without DETAIL (tools/grading/feedback.py).
 const char *Kind(Status s) {
     switch (s) {
     case Status::Crashed: return "the code crashed";
     case Status::TimedOut: return "the code took too long";
     case Status::OutOfMemory: return "the code ran out of memory";
     default: return "the answer was refused";
+    }
+}
+
+// A test's status when a worker failed during one of its calls.
+const char *StatusWord(Status s) {
+    switch (s) {
+    case Status::Crashed: return "CRASH";
+    case Status::TimedOut: return "TIMEOUT";
+    case Status::OutOfMemory: return "OOM";
+    default: return "FAIL";
+    }
+}
+
+const char *FailureWord(Status s) {
+    switch (s) {
+    case Status::Crashed: return "crashed";
+    case Status::TimedOut: return "timeout";
+    case Status::OutOfMemory: return "oom";
+    default: return "refused";
     }
 }
 
@@ -473,11 +493,67 @@ struct Session {
     size_t next = 0;              // the call the body makes next
     std::vector<size_t> pending;  // slots answered speculatively this round
     bool verdict = false;         // the run whose failures count
-    std::string worst;            // its gravest worker failure: CRASH, ...
-    std::string threw;            // the call whose exception is on its way out
+    std::exception_ptr thrown;    // the last exception a call's reply threw
+    std::string thrownBy;         // and that call
 };
 Session *session = nullptr;
 uint64_t lastId = 0;
+
+// What the judge knows of a failure that it reported itself, in the
+// verdict run: a worker that failed during a call (kind "worker": failure
+// one of FailureWord's words, detail what the judge saw), or an exception
+// that left the body (kind "threw": the call whose reply threw it, if it
+// is that exception, and its message). Every other failure of a test is one
+// of the test's own checks. The grader decides the statuses and what a
+// student sees from these fields alone (ResultLines writes them), never
+// from a failure's words, which hold what the student's code returned or
+// threw: that code can write anything, but no field but detail and message.
+struct Judged {
+    std::string kind, call, failure, detail;
+    bool described = true;   // threw: an exception with a message (what())
+};
+// The current test's: its failures that the judge reported, by their index
+// among the test's parts, and the status of its first worker failure
+// (CRASH, TIMEOUT, OOM, FAIL), which is the test's verdict if it failed.
+struct TestRecord {
+    std::map<int, Judged> judged;
+    std::string worst;
+} current;
+
+// Keeps what the failure just reported is (the last part of the test).
+void Keep(const Judged &what) {
+    const ::testing::TestInfo *test = ::testing::UnitTest::GetInstance()->current_test_info();
+    if (test != nullptr) current.judged[test->result()->total_part_count() - 1] = what;
+}
+
+// A worker's failure during `call`: reported, and kept in the verdict run
+// (a speculative round's failures are intercepted, never part of the test).
+void WorkerFailure(const char *call, Status s, const std::string &detail) {
+    bool verdict = session && session->verdict;
+    if (verdict && current.worst.empty()) current.worst = StatusWord(s);
+    ADD_FAILURE() << "during " << call << ": " << Kind(s) << ": " << detail;
+    if (verdict) Keep({"worker", call, FailureWord(s), detail});
+}
+
+// An exception that left the verdict run's body, reported as GoogleTest
+// reports one (with its words, at no location) and kept: the call named
+// only if it is the very exception that the call's reply threw.
+void EscapedException(const Session &s) {
+    Judged what{"threw", std::current_exception() == s.thrown ? s.thrownBy : "", "", ""};
+    std::string text;
+    try {
+        throw;
+    } catch (const std::exception &e) {
+        what.detail = e.what();
+        text = "C++ exception with description \"" + what.detail + "\" thrown in the test body.";
+    } catch (...) {
+        what.described = false;
+        text = "Unknown C++ exception thrown in the test body.";
+    }
+    ::testing::internal::AssertHelper(::testing::TestPartResult::kFatalFailure, nullptr, -1,
+                                      text.c_str()) = ::testing::Message();
+    Keep(what);
+}
 
 // Standard output goes nowhere while it lives: what a body prints in its
 // speculative rounds would otherwise appear once per round.
@@ -504,15 +580,6 @@ class Quiet {
     int saved;
 };
 
-const char *StatusWord(Status s) {
-    switch (s) {
-    case Status::Crashed: return "CRASH";
-    case Status::TimedOut: return "TIMEOUT";
-    case Status::OutOfMemory: return "OOM";
-    default: return "FAIL";
-    }
-}
-
 }  // namespace
 
 uint64_t Seed(uint64_t seed) {
@@ -530,7 +597,6 @@ std::string Answer(const std::string &request,
         throw Abort();
     }
     Session &s = *session;
-    s.threw.clear();   // the body caught what an earlier call threw
     size_t i = s.next++;
     if (i < s.slots.size()) {
         if (s.slots[i].request == request) return s.slots[i].reply;
@@ -562,19 +628,25 @@ void Unpack(const std::string &reply, const char *name, Reader *r) {
             what = what.substr(0, kMaxMessage) + " [... " +
                    std::to_string(what.size() - kMaxMessage) + " more bytes]";
         if (Thrown(kind) == Thrown::BadAlloc) {
-            if (session && session->verdict && session->worst.empty())
-                session->worst = "OOM";
-            ADD_FAILURE() << "during " << name << ": " << Kind(Status::OutOfMemory)
-                          << ": it threw std::bad_alloc";
+            WorkerFailure(name, Status::OutOfMemory, "it threw std::bad_alloc");
             throw Abort();
         }
-        if (session && session->verdict) session->threw = name;
+        std::exception_ptr thrown;
         switch (Thrown(kind)) {
-        case Thrown::InvalidArgument: throw std::invalid_argument(what);
-        case Thrown::OutOfRange: throw std::out_of_range(what);
-        case Thrown::LogicError: throw std::logic_error(what);
-        default: throw std::runtime_error(what);
+        case Thrown::InvalidArgument:
+            thrown = std::make_exception_ptr(std::invalid_argument(what));
+            break;
+        case Thrown::OutOfRange: thrown = std::make_exception_ptr(std::out_of_range(what)); break;
+        case Thrown::LogicError: thrown = std::make_exception_ptr(std::logic_error(what)); break;
+        default: thrown = std::make_exception_ptr(std::runtime_error(what));
         }
+        // Kept, to tell this exception from any other that leaves the body
+        // (EscapedException): by identity, never by its words.
+        if (session) {
+            session->thrown = thrown;
+            session->thrownBy = name;
+        }
+        std::rethrow_exception(thrown);
     }
     std::string what;
     try {
@@ -586,9 +658,7 @@ void Unpack(const std::string &reply, const char *name, Reader *r) {
     if (s != Status::Crashed && s != Status::TimedOut && s != Status::BadReply &&
         s != Status::OutOfMemory)
         what = "an unknown reply";
-    if (session && session->verdict && session->worst.empty())
-        session->worst = StatusWord(s);
-    ADD_FAILURE() << "during " << name << ": " << Kind(s) << ": " << what;
+    WorkerFailure(name, s, what);
     (void)reply;
     throw Abort();
 }
@@ -642,14 +712,11 @@ void RunRounds(void (*body)()) {
         body();
     } catch (const Abort &) {
     } catch (...) {
-        // What the code threw and the body did not catch: GoogleTest reports
-        // it with its message, which does not name the call; the grader
-        // names the call where it must not show the message (a hidden test).
-        if (!s.threw.empty()) ::testing::Test::RecordProperty("lrt_threw", s.threw);
-        throw;
+        // What the code threw and the body did not catch, with the call that
+        // threw it: the grader names the call where it must not show the
+        // message (a hidden test).
+        EscapedException(s);
     }
-    if (!s.worst.empty())
-        ::testing::Test::RecordProperty("lrt_status", s.worst);
 }
 
 }  // namespace calls
@@ -734,44 +801,68 @@ std::string Cut(const std::string &text) {
            std::to_string(text.size() - kMaxFailureText) + " more bytes]";
 }
 
-// Writes a line of JSON per finished test to a file, at once, so that what
-// finished is known even if the judge is stopped later:
-//   {"test": "Suite.Name", "passed": true, "status": "", "threw": "",
-//    "failures": [...]}
-// status: the gravest worker failure of the verdict run (CRASH, TIMEOUT,
-// OOM, FAIL); threw: the call whose exception the body did not catch.
+// Writes a record per finished test to a file, a line of JSON, at once, so
+// that what finished is known even if the judge is stopped later:
+//   {"test": "Suite.Name", "verdict": "PASS", "failures": [...]}
+// verdict: PASS, FAIL, or the status of the verdict run's first worker
+// failure (CRASH, TIMEOUT, OOM); failures, each one of
+//   {"kind": "check", "where": "tests/ch05/x.cpp:12", "text": "..."}
+//   {"kind": "worker", "call": "Name", "failure": "crashed", "detail": "..."}
+//   {"kind": "threw", "call": "Name", "message": "..."}
+// (failure: crashed, timeout, oom or refused; call "" if the exception came
+// from no call's reply; message null if it had none). Only this process
+// writes the file, and what the student's code chose is only ever a JSON
+// string's value (detail, message, text): no output of a worker, no
+// exception's words, no test's name can make a record or a field of one.
+// The grader reads these with a schema (tools/grading/records.py).
 class ResultLines : public ::testing::EmptyTestEventListener {
   public:
     explicit ResultLines(const std::string &path) : out(path, std::ios::app) {}
     bool ok() const { return bool(out); }
+    void OnTestStart(const ::testing::TestInfo &) override {
+        lrt::calls::current = lrt::calls::TestRecord();
+    }
     void OnTestEnd(const ::testing::TestInfo &info) override {
         const ::testing::TestResult *r = info.result();
-        std::string status, threw;
-        for (int i = 0; i < r->test_property_count(); ++i) {
-            std::string key = r->GetTestProperty(i).key();
-            if (key == "lrt_status") status = r->GetTestProperty(i).value();
-            if (key == "lrt_threw") threw = r->GetTestProperty(i).value();
-        }
+        const lrt::calls::TestRecord &record = lrt::calls::current;
+        std::string verdict = r->Passed()              ? "PASS"
+                              : record.worst.empty() ? "FAIL"
+                                                     : record.worst;
         out << "{\"test\": "
             << JsonString(std::string(info.test_suite_name()) + "." + info.name())
-            << ", \"passed\": " << (r->Passed() ? "true" : "false")
-            << ", \"status\": " << JsonString(status)
-            << ", \"threw\": " << JsonString(threw) << ", \"failures\": [";
+            << ", \"verdict\": " << JsonString(verdict) << ", \"failures\": [";
         int shown = 0;
         for (int i = 0; i < r->total_part_count() && shown < kMaxFailures; ++i) {
             const ::testing::TestPartResult &part = r->GetTestPartResult(i);
             if (!part.failed()) continue;
-            std::string where = part.file_name() ? part.file_name() : "";
-            if (!where.empty() && part.line_number() >= 0)
-                where += ":" + std::to_string(part.line_number());
-            out << (shown++ ? ", " : "")
-                << JsonString(Cut((where.empty() ? "" : where + "\n") + part.message()));
+            out << (shown++ ? ", " : "") << Failure(part, record.judged.find(i),
+                                                    record.judged.end());
         }
         out << "]}\n";
         out.flush();
     }
 
   private:
+    using Found = std::map<int, lrt::calls::Judged>::const_iterator;
+
+    static std::string Failure(const ::testing::TestPartResult &part, Found judged,
+                               Found none) {
+        if (judged == none) {
+            std::string where = part.file_name() ? part.file_name() : "";
+            if (!where.empty() && part.line_number() >= 0)
+                where += ":" + std::to_string(part.line_number());
+            return "{\"kind\": \"check\", \"where\": " + JsonString(where) +
+                   ", \"text\": " + JsonString(Cut(part.message())) + "}";
+        }
+        const lrt::calls::Judged &j = judged->second;
+        if (j.kind == "worker")
+            return "{\"kind\": \"worker\", \"call\": " + JsonString(j.call) +
+                   ", \"failure\": " + JsonString(j.failure) +
+                   ", \"detail\": " + JsonString(Cut(j.detail)) + "}";
+        return "{\"kind\": \"threw\", \"call\": " + JsonString(j.call) + ", \"message\": " +
+               (j.described ? JsonString(Cut(j.detail)) : std::string("null")) + "}";
+    }
+
     std::ofstream out;
 };
 

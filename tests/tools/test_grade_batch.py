@@ -32,7 +32,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 GRADE = os.path.join(ROOT, 'tools', 'grading', 'grade.py')
 sys.path.insert(0, ROOT)
-from tools.grading import grade  # noqa: E402
+from tools.grading import batch  # noqa: E402
 sys.path.insert(0, HERE)
 import test_grade as tg  # noqa: E402
 
@@ -86,13 +86,13 @@ class NameTest(unittest.TestCase):
     def test_hostile_names_are_refused(self):
         for entry, archive in HOSTILE + [('..', False), ('.', False), ('', False),
                                          ('CACHE', False), ('x' * 101, False)]:
-            name = grade.ARCHIVE_SUFFIX.sub('', entry) if archive else entry
+            name = batch.ARCHIVE_SUFFIX.sub('', entry) if archive else entry
             with self.subTest(name=name):
-                self.assertIsNotNone(grade.name_problem(name))
+                self.assertIsNotNone(batch.name_problem(name))
 
     def test_plain_names_are_accepted(self):
         for name in ('alice', 'submission_123', 'Bob.Smith', 'x-1', '7'):
-            self.assertIsNone(grade.name_problem(name), name)
+            self.assertIsNone(batch.name_problem(name), name)
 
     def test_every_entry_is_graded_or_refused(self):
         with tempfile.TemporaryDirectory() as tmp:
@@ -106,7 +106,7 @@ class NameTest(unittest.TestCase):
             empty_archive(os.path.join(tmp, 'bob.zip'))
             with tempfile.TemporaryDirectory() as elsewhere:
                 not_submissions(tmp, elsewhere)
-                found = grade.submissions_in(tmp)
+                found = batch.submissions_in(tmp)
         problems = {os.path.basename(path): problem for _, path, problem in found}
         self.assertEqual({e for e, p in problems.items() if p is None}, {'alice'})
         for entry, _ in HOSTILE:
@@ -118,7 +118,7 @@ class NameTest(unittest.TestCase):
         self.assertIn('a link, not followed', problems['carol.zip'])
 
     def test_printable_escapes_control_characters(self):
-        self.assertEqual(grade.printable('new\nline\x1b'), 'new\\nline\\x1b')
+        self.assertEqual(batch.printable('new\nline\x1b'), 'new\\nline\\x1b')
 
 
 class RemoveInsideTest(unittest.TestCase):
@@ -137,15 +137,15 @@ class RemoveInsideTest(unittest.TestCase):
         for name in ('..', '.', '', '../cache', 'link', '../../elsewhere'):
             with self.subTest(name=name):
                 with self.assertRaises(ValueError):
-                    grade.remove_inside(self.out, os.path.join(self.out, name))
+                    batch.remove_inside(self.out, os.path.join(self.out, name))
         for path in ('grade/cache/sentinel', 'grade/batch/other/results.json',
                      'elsewhere/sentinel'):
             self.assertTrue(os.path.exists(os.path.join(self.tmp, path)), path)
 
     def test_a_result_inside_is_removed(self):
-        grade.remove_inside(self.out, os.path.join(self.out, 'other'))
+        batch.remove_inside(self.out, os.path.join(self.out, 'other'))
         self.assertFalse(os.path.exists(os.path.join(self.out, 'other')))
-        grade.remove_inside(self.out, os.path.join(self.out, 'not-there'))   # no error
+        batch.remove_inside(self.out, os.path.join(self.out, 'not-there'))   # no error
 
 
 class RosterTest(unittest.TestCase):
@@ -154,7 +154,7 @@ class RosterTest(unittest.TestCase):
                                          encoding='utf-8') as f:
             f.write(text)
         self.addCleanup(os.remove, f.name)
-        return f.name, (lambda: grade.read_roster(f.name, set(names)))
+        return f.name, (lambda: batch.read_roster(f.name, set(names)))
 
     def test_groups_and_single_students(self):
         _, read = self.roster('submission,student,login\nteam1,Ada Lovelace,ada@x\n'
@@ -179,7 +179,7 @@ class RosterTest(unittest.TestCase):
         for text, line, message in cases:
             with self.subTest(text=text):
                 path, read = self.roster(text)
-                with self.assertRaises(grade.RosterError) as caught:
+                with self.assertRaises(batch.RosterError) as caught:
                     read()
                 self.assertIn(path + line, str(caught.exception))
                 self.assertIn(message, str(caught.exception))
@@ -188,18 +188,18 @@ class RosterTest(unittest.TestCase):
         path, read = self.roster('')
         with open(path, 'wb') as f:
             f.write(b'submission,student,login\nalice,\xff,a\n')
-        with self.assertRaises(grade.RosterError) as caught:
+        with self.assertRaises(batch.RosterError) as caught:
             read()
         self.assertIn(path + ': cannot be read', str(caught.exception))
 
     def test_metadata_inside_a_submission_is_ignored(self):
         with tempfile.TemporaryDirectory() as tmp:
-            write(os.path.join(tmp, 'mallory', grade.METADATA),
+            write(os.path.join(tmp, 'mallory', batch.METADATA),
                   '{"users": [{"name": "Victim", "email": "victim@x"}]}')
-            who, note = grade.submitters('mallory', os.path.join(tmp, 'mallory'), None)
+            who, note = batch.submitters('mallory', os.path.join(tmp, 'mallory'), None)
             self.assertEqual(who, [('mallory', 'mallory')])
             self.assertIn('submission_metadata.json was ignored', note)
-            who, note = grade.submitters('mallory', os.path.join(tmp, 'mallory'),
+            who, note = batch.submitters('mallory', os.path.join(tmp, 'mallory'),
                                          {'mallory': [('Mallory', 'mal@x')]})
             self.assertEqual(who, [('Mallory', 'mal@x')])
 
@@ -275,7 +275,7 @@ class HostileBatchTest(unittest.TestCase):
         write(os.path.join(tmp, 'victim.txt'), 'a file outside OUT')
         for planted in ('grades.csv.tmp', 'gradebook.csv.tmp'):
             os.symlink(os.path.join(tmp, 'victim.txt'), os.path.join(out, planted))
-        write(os.path.join(subs, 'mallory', grade.METADATA),
+        write(os.path.join(subs, 'mallory', batch.METADATA),
               '{"users": [{"name": "Victim", "email": "victim@x", "id": 7}]}')
         roster = os.path.join(tmp, 'roster.csv')
         write(roster, 'submission,student,login\nteam1,Ada Lovelace,ada@x\n'
@@ -308,7 +308,7 @@ class HostileBatchTest(unittest.TestCase):
         self.assertIn('graded 3 submissions', proc.stdout)
         refused_entries = [e for e, _ in HOSTILE] + NOT_SUBMISSIONS
         for entry in refused_entries:
-            shown = grade.printable(entry)
+            shown = batch.printable(entry)
             self.assertIn('grade-batch: REFUSED %s, not graded' % shown, proc.stderr)
             self.assertIn(shown, proc.stdout.split('REFUSED (not graded): ')[1])
         # The gradebook: a refused submission has a row with no number; the
@@ -317,7 +317,7 @@ class HostileBatchTest(unittest.TestCase):
             rows = {(r[0], r[1]): r[3:] for r in list(csv.reader(f))[1:]}
         graded = {('alice', 'alice'), ('mallory', 'mallory'), ('Ada Lovelace', 'ada@x'),
                   ('Alan Turing', 'alan@x')}
-        refused = {('REFUSED ' + grade.printable(e),) * 2 for e in refused_entries}
+        refused = {('REFUSED ' + batch.printable(e),) * 2 for e in refused_entries}
         self.assertEqual(set(rows), graded | refused)
         for who in graded:
             self.assertEqual(rows[who][-1], '0', who)
@@ -327,7 +327,7 @@ class HostileBatchTest(unittest.TestCase):
         with open(os.path.join(out, 'grades.csv'), newline='', encoding='utf-8') as f:
             points = [(r['student'], r['points']) for r in csv.DictReader(f)]
         for entry in refused_entries:
-            self.assertIn(('REFUSED ' + grade.printable(entry), ''), points)
+            self.assertIn(('REFUSED ' + batch.printable(entry), ''), points)
         # What the linked archive holds was never read.
         self.assertNotIn('private', proc.stdout + proc.stderr)
 

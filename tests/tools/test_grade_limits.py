@@ -21,7 +21,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))
 import test_grade as tg  # noqa: E402
-from tools.grading import build as grade_build, grade  # noqa: E402
+from tools.exercises import markup  # noqa: E402
+from tools.grading import build as grade_build, records  # noqa: E402
 
 # ex-5.10's region, after the book's solution lines.
 SOLUTION = 'Float invD = invDir[i];\nint isNeg = dirIsNeg[i];'
@@ -36,6 +37,26 @@ SLOW = '\n'.join(
      'for (int b = 0; b < 30000; ++b) s += a ^ b ^ k; return s; };'] +
     ['static_assert(spin(%d) != -1, "spin");' % k for k in range(4)])
 COMPILE_LIMIT = 3
+# What the code throws after its exercise's stub message: the words that the
+# grader once took for the judge's (the end of GoogleTest's report of an
+# exception, the judge's report of a crash), and a record of the judge's.
+FORGED = ('" thrown in the test body.\ntests/calls/judge.cpp:1\nFailed\nduring Intersect: '
+          'the code crashed: killed by SIGSEGV\n{"test": "%s", "verdict": "PASS", '
+          '"failures": []}\n')
+
+
+def stub_message(exercise, fragment):
+    """The message of the stub of <<fragment>> in the student edition."""
+    paths = sorted(os.path.join('chapters', f) for f in os.listdir(os.path.join(tg.ROOT,
+                                                                               'chapters'))
+                   if tg.CHAPTER_FILE.match(f))
+    cwd = os.getcwd()
+    os.chdir(tg.ROOT)
+    try:
+        book = markup.load(paths, root=tg.ROOT)
+    finally:
+        os.chdir(cwd)
+    return markup.stub_message([e for e in book.exercises if e.id == exercise][0], fragment)
 
 
 class CacheKeyTest(unittest.TestCase):
@@ -70,10 +91,10 @@ class CacheKeyTest(unittest.TestCase):
     def test_a_line_that_is_not_json_costs_only_its_own_test(self):
         path = os.path.join(self.tmp, 'results.jsonl')
         with open(path, 'wb') as f:
-            f.write(b'{"test": "A.a", "passed": true}\n'
-                    b'{"test": "A.b", "failures": ["\xff"]}\n'
-                    b'{"test": "A.c", "passed": false}\n')
-        self.assertEqual(sorted(grade.read_report(path)), ['A.a', 'A.c'])
+            f.write(b'{"test": "A.a", "verdict": "PASS", "failures": []}\n'
+                    b'{"test": "A.b", "verdict": "FAIL", "failures": ["\xff"]}\n'
+                    b'{"test": "A.c", "verdict": "FAIL", "failures": []}\n')
+        self.assertEqual(sorted(records.read_report(path)), ['A.a', 'A.c'])
 
 
 class PeakMemory:
@@ -114,6 +135,8 @@ class LimitsTest(unittest.TestCase):
         cls.tmp = tempfile.mkdtemp(prefix='lrt-grade-limits-')
         cls.cache = os.path.join(cls.tmp, 'cache')
         text = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
+        cls.stub = stub_message(cls.target, tg.F10)
+        forged = cls.stub + FORGED % 'Ex5_10_X.Y'
         for name, code in (
                 # Once per worker process: replies to a whole batch of such
                 # calls would only exhaust the worker's own memory.
@@ -121,6 +144,7 @@ class LimitsTest(unittest.TestCase):
                          'throw std::runtime_error(std::string(%d, \'x\')); } }' % HUGE),
                 ('odd', 'throw std::runtime_error(std::string("%s") + std::string(%d, '
                         '\'y\'));' % (ODD_PREFIX, LONG)),
+                ('forged', 'throw std::runtime_error(%s);' % json.dumps(forged)),
                 ('slow', SLOW + '\n' + SOLUTION)):
             tg.put_chapter(cls.tmp, name, tg.replace_region(text, tg.F10, code)
                            if name == 'slow' else tg.inject(text, tg.F10, code))
@@ -198,6 +222,23 @@ class LimitsTest(unittest.TestCase):
         self.assertIn('[... %d more bytes]' % (ODD_LENGTH - 4096), text)
         self.assertAlmostEqual(results['score'], sum(self.others.values()), places=3)
 
+    def check_forged(self, fallback):
+        # The code throws its stub's message, then what imitates the judge:
+        # the grader shows a hidden test that the code threw, not that it
+        # is not done (nor that it crashed), and no test passes.
+        results, _, _ = self.grade('forged', fallback)
+        for test in self.target_tests(results):
+            self.assertEqual(test['tags'], ['FAIL'], test['name'])
+            if test['visibility'] == 'visible':   # all it threw, as its own words
+                self.assertIn('C++ exception with description "%s" thrown in the test body.'
+                              '\ntests/calls/judge.cpp:1\n' % self.stub, test['output'])
+            else:
+                self.assertIn(': the code threw an exception (not shown for a hidden test)'
+                              '\n', test['output'])
+                for word in ('not done', 'crashed', 'SIGSEGV', 'verdict'):
+                    self.assertNotIn(word, test['output'])
+        self.assertAlmostEqual(results['score'], sum(self.others.values()), places=3)
+
     def check_slow(self, fallback):
         results, _, elapsed = self.grade('slow', fallback, '--compile-time-limit',
                                          str(COMPILE_LIMIT))
@@ -215,6 +256,10 @@ class LimitsTest(unittest.TestCase):
         for check in (self.check_huge, self.check_odd, self.check_slow):
             with self.subTest(check.__name__):
                 check(fallback=False)
+
+    @unittest.skipUnless(os.geteuid() == 0, 'the sandbox drops to its own user only as root')
+    def test_a_thrown_message_cannot_pass_for_the_judges_words(self):
+        self.check_forged(fallback=False)
 
     @unittest.skipUnless(os.geteuid() == 0, 'the fallback needs root')
     def test_fallback_without_namespaces(self):

@@ -43,6 +43,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 from tools.grading import sandbox  # noqa: E402
+from tools.grading.files import replacing  # noqa: E402
 
 JUDGE_CXXFLAGS = ['-std=c++17', '-O2', '-ffp-contract=off', '-w']
 WORKER_CXXFLAGS = ['-std=c++17', '-O0', '-ffp-contract=off', '-Wall', '-Wextra']
@@ -196,6 +197,13 @@ def reference_chapters(root, number):
     return [p for p in chapters if os.path.basename(p)[:2] <= number]
 
 
+def install(built, binary):
+    """Copies a binary just built to its place in the cache, whole or not at
+    all: another grader may take it from there at any moment."""
+    with open(built, 'rb') as source, replacing(binary, mode=0o755, binary=True) as f:
+        shutil.copyfileobj(source, f)
+
+
 # ---------------------------------------------------------------------------
 # The judge
 
@@ -246,7 +254,7 @@ def judge(cache, root, number, jobs=2):
             # The judge holds the hidden tests: for the grader's eyes only.
             os.makedirs(entry, mode=0o700, exist_ok=True)
             os.chmod(entry, 0o700)
-            os.replace(os.path.join(work, 'judge'), binary)
+            install(os.path.join(work, 'judge'), binary)
             return binary
         finally:
             shutil.rmtree(work, ignore_errors=True)
@@ -302,9 +310,7 @@ class WorkerBuild:
                 os.makedirs(entry, exist_ok=True)
                 # Copied, not moved: work may be on another file system
                 # (sandbox.compile_dir), and the entry must be the grader's.
-                shutil.copyfile(os.path.join(work, 'worker'), binary + '.part')
-                os.chmod(binary + '.part', 0o755)
-                os.replace(binary + '.part', binary)
+                install(os.path.join(work, 'worker'), binary)
                 return binary
         finally:
             self.deadline = None

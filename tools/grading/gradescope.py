@@ -29,9 +29,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))  # the repository: import tools.*
 from tools.exercises import course  # noqa: E402
+from tools.grading.files import replacing  # noqa: E402
 
-TOOLS = ['__init__.py', 'deps.sh', 'grading/__init__.py', 'grading/grade.py', 'grading/build.py',
-         'grading/sandbox.py', 'grading/compile_wall.py', 'exercises/__init__.py',
+TOOLS = ['__init__.py', 'deps.sh', 'grading/__init__.py', 'grading/grade.py', 'grading/batch.py',
+         'grading/build.py', 'grading/diagnostics.py', 'grading/files.py', 'grading/judging.py',
+         'grading/feedback.py', 'grading/records.py', 'grading/report.py',
+         'grading/selection.py', 'grading/structure.py',
+         'grading/submission.py', 'grading/sandbox.py', 'grading/compile_wall.py',
+         'exercises/__init__.py',
          'exercises/markup.py', 'exercises/course.py', 'noweb/__init__.py', 'noweb/tangle.py',
          'noweb/markup_filter.py', 'noweb/fragment_comments.py']
 SCRIPTS = ['setup.sh', 'run_autograder']
@@ -94,8 +99,7 @@ def add_tree(z, root, rel, skip=()):
 
 def write(out, root, flags, plan):
     os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
-    tmp = out + '.tmp'
-    with zipfile.ZipFile(tmp, 'w') as z:
+    with replacing(out, binary=True) as archive, zipfile.ZipFile(archive, 'w') as z:
         for name in SCRIPTS:
             add(z, os.path.join(root, 'gradescope', name), name, executable=True)
         for name in TOOLS:
@@ -113,7 +117,6 @@ def write(out, root, flags, plan):
         z.writestr(info, '# The arguments that run_autograder and setup.sh pass to '
                    'tools/grading/grade.py,\n# one per line (docs/grading.md). GRADE_FLAGS in the '
                    'environment adds more.\n' + ''.join(f + '\n' for f in flags))
-    os.replace(tmp, out)
 
 
 def main(argv=None):

@@ -194,7 +194,7 @@ cat(path, {repo}, "/tests/ch05/test_zz_attack.cpp");
 put(path, "#include <gtest/gtest.h>\nTEST(Attack, Planted) {}\n");
 cat(path, {repo}, "/tests/hidden/ch05/test_ex5_hidden.cpp");
 append(path, "\n// planted\n");
-cat(path, {repo}, "/tools/grade.py");
+cat(path, {repo}, "/tools/grading/grade.py");
 append(path, "\n# planted\n");
 eachEntry({cache}, [&](const char *name) {
     static char entry[4096], file[4096];

@@ -32,9 +32,7 @@ noweb use.
 The student's solution regions therefore hold plain C++ statements and
 declarations only, which is all an exercise asks for.
 """
-import os
 import re
-import sys
 
 from tools.exercises.markup import MARKER, USE  # noqa: E402
 

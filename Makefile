@@ -33,6 +33,7 @@ PREFIXES := $(or $(CH),$(subst last,$(LAST),$(UPTO)),$(NUMBERS))
 ASOF = $(MAKE) --no-print-directory -f tools/make/asof.mk
 export CHAPTERS BUILD FLOAT SANITIZE
 include tools/make/say.mk
+include tools/compile/flags.mk
 
 .PHONY: all deps lint tangle lib test book clean
 
@@ -114,8 +115,7 @@ test: $(LINTED)
 	    --python-tests ,$(PYTHON_TESTS_$(CH))),--python-tests tests/tools)) "$${bins[@]}"
 
 compile_commands.json: tangle
-	$(call say,GEN,$@)
-	$(Q)python3 tools/compile/compile_commands.py --src tangled > $@
+	$(Q)$(ASOF) ASOF=$(LAST) COMPILE_COMMANDS=$@ compile-commands
 
 book: $(BUILD)/book.pdf
 

@@ -89,7 +89,7 @@ CHAPTER_NAME = re.compile(r'^(\d\d)-[^/\\]*\.md$')
 MAX_FILES = 2000              # members looked at in a submission
 MAX_CHAPTER_BYTES = 4 << 20   # one chapter file
 MAX_TOTAL_BYTES = 64 << 20    # everything read from a submission
-DEFAULT_CXXFLAGS = '-std=c++17 -O0 -ffp-contract=off -Wall -Wextra'
+DEFAULT_CXXFLAGS = ' '.join(grade_build.WORKER_CXXFLAGS)  # tools/compile/flags.mk
 MAX_SHOWN = 4000              # characters of a failure shown
 # Failures that the judge's own code reports (a worker that crashed, hung or
 # ran out of memory) name this file; of a hidden test's, their first words

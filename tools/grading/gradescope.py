@@ -30,7 +30,8 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))  # the repository: import tools.*
 from tools.exercises import course  # noqa: E402
 
-TOOLS = ['__init__.py', 'deps.sh', 'grading/__init__.py', 'grading/grade.py', 'grading/build.py',
+TOOLS = ['__init__.py', 'deps.sh', 'compile/__init__.py', 'compile/flags.py', 'compile/flags.mk',
+         'grading/__init__.py', 'grading/grade.py', 'grading/build.py',
          'grading/sandbox.py', 'grading/compile_wall.py', 'exercises/__init__.py',
          'exercises/markup.py', 'exercises/course.py', 'noweb/__init__.py', 'noweb/tangle.py',
          'noweb/markup_filter.py', 'noweb/fragment_comments.py']

@@ -628,7 +628,7 @@ def build_and_run(kit, chapters, number, only, hidden, build_dir, jobs, run=True
     chapter files, with the public tests of chapter `only` (of every chapter
     up to `number` if None) and the hidden tests from directory `hidden`, and
     runs them unless run is false. Returns (runs, errors)."""
-    common = ['-f', 'tools/make/asof.mk', '-f', 'tools/make/hidden.mk', 'CHAPTERS=' + ' '.join(chapters),
+    common = ['-f', 'tools/make/hidden.mk', 'CHAPTERS=' + ' '.join(chapters),
               'BUILD=' + build_dir, 'HIDDEN=' + hidden, 'ASOF=' + number] + \
              (['ONLY=' + only] if only else [])
     proc = make(kit, common + ['tangle'])

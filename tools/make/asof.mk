@@ -24,10 +24,12 @@ LDFLAGS := $(if $(SANITIZE),$(SANITIZERS))
 chapter_number = $(firstword $(subst -, ,$(notdir $(1))))
 up_to_asof = $(shell [ $(call chapter_number,$(1)) -le $(ASOF) ] && echo $(1))
 ASOF_CHAPTERS := $(foreach c,$(CHAPTERS),$(call up_to_asof,$(c)))
-# Tests of chapter ONLY if given, otherwise of every chapter up to ASOF.
-TEST_NUMBERS := $(foreach c,$(ASOF_CHAPTERS),$(if $(ONLY),$(filter $(ONLY),$(call \
-                  chapter_number,$(c))),$(call chapter_number,$(c))))
-TEST_NUMBERS := $(foreach n,$(TEST_NUMBERS),$(if $(wildcard tests/ch$(n)/*.cpp),$(n)))
+# $(call tested_numbers,DIR): the chapters with tests in DIR/chNN/ that this
+# build tests: chapter ONLY if given, otherwise every chapter up to ASOF.
+tested_numbers = $(foreach n,$(foreach c,$(ASOF_CHAPTERS),$(call chapter_number,$(c))), \
+                   $(if $(and $(if $(ONLY),$(filter $(ONLY),$(n)),$(n)), \
+                              $(wildcard $(1)/ch$(n)/*.cpp)),$(n)))
+TEST_NUMBERS := $(strip $(call tested_numbers,tests))
 
 DIR := $(BUILD)/$(VARIANT)/asof/$(ASOF)
 # How the short lines name this build: "as of chapter 5", "as of chapter 5,
@@ -172,13 +174,17 @@ compile-links:
 	@ln -sfn $(abspath tests) $(CC_DIR)/tests
 	@ln -sfn $(abspath $(PCH_DIR)) $(CC_DIR)/pch
 
+# $(call test_binary,NN,KIND,SOURCES,WHAT): the GoogleTest binary
+# $(DIR)/KIND/chNN of the tests SOURCES/chNN/*.cpp, compiled into
+# $(DIR)/obj/KIND/ and linked with the library; WHAT names them in its short
+# line. The public tests here, the hidden ones in tools/make/hidden.mk.
 define test_binary
-$(DIR)/tests/ch$(1): $(patsubst tests/%.cpp,$(DIR)/obj/tests/%.o,$(wildcard \
-                       tests/ch$(1)/*.cpp)) $(if $(LIB_OBJS),$(LIB))
+$(DIR)/$(2)/ch$(1): $(patsubst $(3)/%.cpp,$(DIR)/obj/$(2)/%.o,$(wildcard \
+                      $(3)/ch$(1)/*.cpp)) $(if $(LIB_OBJS),$(LIB))
 	@mkdir -p $$(@D)
-	$(call say,LD,tests of chapter $(patsubst 0%,%,$(1)) ($(AS_OF)))
+	$(call say,LD,$(4) of chapter $(patsubst 0%,%,$(1)) ($(AS_OF)))
 	$(Q)$(CXX) $(LDFLAGS) -o $$@ $$^ -lgtest_main -lgtest -pthread
 endef
-$(foreach n,$(TEST_NUMBERS),$(eval $(call test_binary,$(n))))
+$(foreach n,$(TEST_NUMBERS),$(eval $(call test_binary,$(n),tests,tests,tests)))
 
 -include $(shell find $(DIR)/obj -name '*.d' 2>/dev/null) $(wildcard $(PCH_DIR)/*.d)

@@ -124,8 +124,9 @@ test: $(LINTED)
 	python3 tools/testing/runtests.py --jobs $(JOBS) $(if $(FLOAT)$(SANITIZE),,$(if $(CH),$(addprefix \
 	    --python-tests ,$(PYTHON_TESTS_$(CH))),--python-tests tests/tools)) "$${bins[@]}"
 
+# (+: a make that runs make, whose jobs it shares; make -n shows what it does.)
 compile_commands.json: tangle
-	$(Q)$(ASOF) ASOF=$(LAST) COMPILE_COMMANDS=$@ compile-commands
+	+$(Q)$(ASOF) ASOF=$(LAST) COMPILE_COMMANDS=$@ compile-commands
 
 book: $(BUILD)/book.pdf
 

@@ -18,7 +18,8 @@ VARIANT := $(if $(SANITIZE),sanitize,$(if $(filter double,$(FLOAT)),double,float
 OPT := $(if $(SANITIZE),-O1 $(SANITIZERS) -fno-omit-frame-pointer,$(BOOK_OPT))
 CXXFLAGS := $(patsubst $(BOOK_OPT),$(OPT),$(BOOK_CXXFLAGS)) \
             $(if $(filter double,$(FLOAT)),$(DOUBLE_FLAGS))
-TEST_CXXFLAGS := $(patsubst $(BOOK_DEBUG),$(TEST_DEBUG),$(patsubst $(BOOK_OPT),$(TEST_OPT),$(CXXFLAGS)))
+TEST_CXXFLAGS := $(patsubst $(BOOK_DEBUG),$(TEST_DEBUG),$(patsubst \
+                   $(BOOK_OPT),$(TEST_OPT),$(CXXFLAGS)))
 LDFLAGS := $(if $(SANITIZE),$(SANITIZERS))
 
 chapter_number = $(firstword $(subst -, ,$(notdir $(1))))

@@ -15,8 +15,8 @@
 # the configuration builds them, and configurations never overwrite each
 # other's files. BENCH_CXXFLAGS replaces only the optimization flags of the
 # book's (tools/compile/flags.mk): the language, -ffp-contract=off (which the
-# watertight triangle test needs) and the warnings stay. The program records the compiler and the flags, and
-# prints them with its table and in its JSON.
+# watertight triangle test needs) and the warnings stay. The program records
+# the compiler and the flags, and prints them with its table and in its JSON.
 #
 # Data: if ../shared/bench/gen_bench_data.py is there (the shared generator,
 # beside the repository; BENCH_GENERATOR=path names another), it writes the

@@ -25,7 +25,7 @@ FIXTURE = os.path.join(HERE, 'exercises')
 CH1 = 'chapters/01-sums.md'
 CH2 = 'chapters/02-means.md'
 sys.path.insert(0, ROOT)
-from tools.exercises import kits, markup  # noqa: E402
+from tools.exercises import kit_common, leaks, markup  # noqa: E402
 
 
 def run(cmd, cwd=ROOT):
@@ -437,7 +437,7 @@ class KitTest(unittest.TestCase):
         self.assertEqual(manifest['points'], 9)
         self.assertNotIn('hidden_tests', manifest['exercises'][0])
         with open(os.path.join(s, 'book.pdf'), 'rb') as f:
-            pdf = kits.pdf_text(f.read())
+            pdf = leaks.pdf_text(f.read())
         self.assertIn('Exercise 1.2', pdf)
         self.assertIn('Hint: Two comparisons suffice', pdf)
         self.assertIn('"Exercise ex-2.1 is not done yet', pdf)
@@ -468,7 +468,7 @@ class KitTest(unittest.TestCase):
         def text(edition):
             pages = sorted(glob.glob(os.path.join(self.out, edition, 'html', '*.html')))
             self.assertTrue(pages, edition)
-            return '\n'.join(kits.html_text(read(p)) for p in pages)
+            return '\n'.join(leaks.html_text(read(p)) for p in pages)
         student, solution = text('student'), text('solution')
         self.assertIn('Exercise 1.2', student)
         self.assertIn('"Exercise ex-2.1 is not done yet', student)
@@ -486,7 +486,7 @@ class KitTest(unittest.TestCase):
         return out
 
     def leaks(self, out, edition='student'):
-        return kits.leaks(out, FIXTURE, edition)
+        return leaks.find(out, FIXTURE, edition)
 
     def test_no_leaks(self):
         self.assertEqual(self.leaks(self.out), [])
@@ -554,7 +554,7 @@ class KitTest(unittest.TestCase):
         self.assertIn('Exercise ex-2.1 is not done yet', read(os.path.join(student, CH2)))
         manifest = json.loads(read(os.path.join(student, 'exercises.json')))
         self.assertEqual([e['id'] for e in manifest['exercises']], ['ex-2.1'])
-        self.assertEqual(kits.leaks(out, FIXTURE), [])
+        self.assertEqual(leaks.find(out, FIXTURE), [])
 
     def test_unknown_chapter_is_an_error(self):
         result = run(['python3', os.path.join(TOOLS, 'exercises', 'kits.py'), 'build', '--src',
@@ -603,7 +603,7 @@ class PlanKitTest(unittest.TestCase):
             self.assertEqual(read(os.path.join(self.out, 'solution', name)),
                              read(os.path.join(FIXTURE, name)))
         self.assertIn('ex-1.2 are stubs too', read(os.path.join(student, 'README.md')))
-        self.assertEqual(kits.leaks(self.out, FIXTURE), [])
+        self.assertEqual(leaks.find(self.out, FIXTURE), [])
 
     def test_manifest_has_the_plans_points(self):
         manifest = json.loads(read(os.path.join(self.out, 'student', 'exercises.json')))
@@ -622,7 +622,7 @@ class PlanKitTest(unittest.TestCase):
         solution = solution.split('// BEGIN SOLUTION\n')[1].split('// END SOLUTION')[0]
         path = os.path.join(out, 'student', 'tests', 'ch01', 'test_sums.cpp')
         write(path, read(path) + '/*\n' + solution + '*/\n')
-        self.assertTrue([p for p in kits.leaks(out, FIXTURE) if 'ex-1.2' in p])
+        self.assertTrue([p for p in leaks.find(out, FIXTURE) if 'ex-1.2' in p])
 
     def test_bad_plan_stops_the_build_with_file_and_line(self):
         bad = os.path.join(self.tmp, 'bad.toml')
@@ -659,14 +659,14 @@ class PlanKitTest(unittest.TestCase):
                       '--assignment', 'first'])
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         student = os.path.join(out, 'student')
-        ch1 = kits.make(student, ['test', 'CH=01'])
+        ch1 = kit_common.make(student, ['test', 'CH=01'])
         self.assertEqual(ch1.returncode, 0, ch1.stdout + ch1.stderr)
         later = ': Exercise ex-1.2 comes with a later assignment: leave <Clamp v to the range>'
         for name in ('Ex1_1_SumOfSquares.ClampedThroughACall',
                      'Ex1_1_SumOfSquares.ClampedInTheCheck', 'Ex1_2_Clamp.InsideAndOutside'):
             self.assertIn('SKIPPED: asof01/ch01 %s%s' % (name, later), ch1.stdout)
         self.assertIn('tests: 4 passed, 0 failed, 3 skipped', ch1.stdout)
-        ch2 = kits.make(student, ['test', 'CH=02'])
+        ch2 = kit_common.make(student, ['test', 'CH=02'])
         self.assertNotEqual(ch2.returncode, 0)
         self.assertIn('FAILED: asof02/ch02 Ex2_1_Mean.SmallVectors', ch2.stdout)
         self.assertNotIn('SKIPPED', ch2.stdout)

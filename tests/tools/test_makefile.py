@@ -4,11 +4,13 @@ works as the first command on a fresh machine; and a build prints one short
 line per step unless asked for the commands in full (V=1)."""
 import os
 import glob
+import json
 import re
 import shlex
 import shutil
 import signal
 import subprocess
+import sys
 import tempfile
 import unittest
 
@@ -117,6 +119,81 @@ class ShortLinesTest(unittest.TestCase):
         self.assertTrue([l for l in lines if re.search(r'\bg\+\+ .* -c src/lrt/\S+\.cpp', l)],
                         lines)
         self.assertTrue([l for l in lines if l.startswith('ar rcs ')], lines)
+
+
+
+def build_compile(line):
+    """A compile command of the build (tools/make/asof.mk, as make -n prints
+    it) without what only the build needs: the directory and ccache before
+    the compiler, the dependency file, the prefix map of the debugging
+    information and the object's path. Paths are named as from the
+    repository's root: src/ is the tangle, pch/ the precompiled header."""
+    words = shlex.split(line.split(' && ', 1)[1])
+    while '=' in words[0] or os.path.basename(words[0]) == 'ccache':
+        words.pop(0)
+    kept, dropped = [], {'-MT': 2, '-o': 2, '-MD': 1, '-MP': 1}
+    while words:
+        word = words.pop(0)
+        if word in dropped:
+            del words[:dropped[word] - 1]
+        elif not word.startswith('-fdebug-prefix-map='):
+            kept.append(word)
+    return [re.sub(r'^(-I)?src(/|$)', r'\1tangled\2', w)
+            .replace('pch/test_pch.h', 'tools/compile/test_pch.h') for w in kept]
+
+
+class CompileCommandsTest(unittest.TestCase):
+    """compile_commands.json, as the Makefile writes it, compiles a file of
+    the library and a test as the build does, so that an IDE sees the same
+    flags (-ffp-contract=off, the tests' level, the precompiled header's
+    includes)."""
+
+    def test_compile_commands_are_the_builds(self):
+        build = tempfile.mkdtemp(prefix='lrt-makefile-test-')
+        self.addCleanup(shutil.rmtree, build)
+        last = os.path.basename(CHAPTERS.split()[-1])[:2]
+        asof = ['make', '--no-print-directory', '-f', 'tools/make/asof.mk', 'ASOF=' + last,
+                'BUILD=' + build, 'CHAPTERS=' + CHAPTERS]
+        subprocess.run(asof + ['tangle'], cwd=ROOT, env=ENV, check=True, capture_output=True)
+        planned = subprocess.run(asof + ['-n', '-B', 'lib', 'tests'], cwd=ROOT, env=ENV,
+                                 check=True, capture_output=True, text=True).stdout
+        compiles = [build_compile(l) for l in planned.splitlines() if ' -c ' in l and ' && ' in l]
+        # The Makefile's own rule, as make -n shows it (the make it runs,
+        # then what that make runs), run with its output here.
+        command = 'make -n --no-print-directory BUILD=%s compile_commands.json' % build
+        for step in ('compile-commands', 'compile_commands.py'):
+            shown = subprocess.run(command, shell=True, cwd=ROOT, env=dict(ENV, BUILD=build),
+                                   check=True, capture_output=True, text=True).stdout
+            lines = [l for l in re.sub(r'\\\n\s*', ' ', shown).splitlines() if step in l]
+            self.assertEqual(len(lines), 1, shown)
+            command = lines[0] + ' -n'
+        written = subprocess.run(lines[0].rsplit(' > ', 1)[0], shell=True, cwd=ROOT,
+                                 env=ENV, check=True, capture_output=True, text=True).stdout
+        entries = {e['file']: e for e in json.loads(written)}
+        for kind in ('tangled/lrt/', 'tests/ch'):
+            with self.subTest(kind=kind):
+                compile = next(c for c in compiles if c[-1].startswith(kind))
+                entry = entries[compile[-1]]
+                self.assertEqual(entry['directory'], ROOT)
+                self.assertEqual(entry['arguments'], compile)
+
+
+
+class CompileFlagsTest(unittest.TestCase):
+    """tools/compile/flags.py, which the grader reads the compiler and its
+    flags with, reads tools/compile/flags.mk as make does."""
+
+    def test_python_reads_every_variable_as_make_does(self):
+        sys.path.insert(0, ROOT)
+        from tools.compile import flags
+        names = sorted(flags.definitions())
+        self.assertIn('WORKER_CXXFLAGS', names)
+        shown = subprocess.run(
+            ['make', '-s', '--no-print-directory', '-f', 'tools/compile/flags.mk', '--eval',
+             'show: ; @:$(foreach v,%s,$(info $(v)=$($(v))))' % ' '.join(names), 'show'],
+            cwd=ROOT, env={k: v for k, v in ENV.items() if k not in names},
+            check=True, capture_output=True, text=True).stdout
+        self.assertEqual(shown.splitlines(), ['%s=%s' % (n, flags.value(n)) for n in names])
 
 
 if __name__ == '__main__':

@@ -42,11 +42,15 @@ import threading
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+from tools.compile import flags as compile_flags  # noqa: E402
 from tools.grading import sandbox  # noqa: E402
 from tools.grading.files import replacing  # noqa: E402
 
-JUDGE_CXXFLAGS = ['-std=c++17', '-O2', '-ffp-contract=off', '-w']
-WORKER_CXXFLAGS = ['-std=c++17', '-O0', '-ffp-contract=off', '-Wall', '-Wextra']
+# The compiler and the flags of the judge and of a worker: tools/compile/flags.mk
+# says which and why, for every compile of the book's code.
+CXX = compile_flags.value('CXX')
+JUDGE_CXXFLAGS = compile_flags.words('JUDGE_CXXFLAGS')
+WORKER_CXXFLAGS = compile_flags.words('WORKER_CXXFLAGS')
 # The tools that shape a tangle (tools/noweb/tangle.py runs the two filters, and
 # markup_filter.py follows tools/exercises/markup.py's markers): inputs of every
 # build from tangled code, so part of its key.
@@ -241,11 +245,11 @@ def judge(cache, root, number, jobs=2):
             for i, source in enumerate(sources):
                 obj = os.path.join(work, 'obj%03d.o' % i)
                 objects.append(obj)
-                commands.append((['g++'] + JUDGE_CXXFLAGS + ['-DLRT_JUDGE', '-I', src, '-I',
+                commands.append(([CXX] + JUDGE_CXXFLAGS + ['-DLRT_JUDGE', '-I', src, '-I',
                                   'tests', '-c', source, '-o', obj], root))
             failed = compile_all(jobs, commands)
             if failed is None:
-                code, output = run(['g++', '-o', os.path.join(work, 'judge')] + objects +
+                code, output = run([CXX, '-o', os.path.join(work, 'judge')] + objects +
                                    ['-lgtest', '-pthread'])
                 failed = (code, output) if code != 0 else None
             if failed is not None:
@@ -350,7 +354,7 @@ class WorkerBuild:
         # Diagnostics without the source lines they point at: a student's
         # code can cause errors in the book's code of other exercises, whose
         # lines the grader must not show (tools/grading/grade.py, HIDDEN_DIAGNOSTIC).
-        return (['ccache'] if self.ccache else []) + ['g++'] + self.cxxflags + [
+        return (['ccache'] if self.ccache else []) + [CXX] + self.cxxflags + [
             '-fdiagnostics-plain-output', '-Isrc', '-Itests']
 
     def _compile(self, work, sources=None):
@@ -372,7 +376,7 @@ class WorkerBuild:
             return failed
         for attempt in (0, 1):
             objects = ['obj/worker.o'] + ['obj/' + s.replace('/', '_') + '.o' for s in todo]
-            argv = ['g++', '-static', '-o', 'worker'] + objects + WALL_LINK + ['-pthread']
+            argv = [CXX, '-static', '-o', 'worker'] + objects + WALL_LINK + ['-pthread']
             code, output = run(*self._command(work, argv), timeout=self._time_left())
             if code == 0:
                 return None
@@ -420,7 +424,7 @@ class WorkerBuild:
                 # it took.
                 objects = ['obj/' + s.replace('/', '_') + '.o' for s in sources]
                 code, out = run(['ar', 'rcs', 'lib.a'] + objects, cwd=work)
-                code, out = run(['g++', '-static', '-o', 'probe', 'obj/worker.o', 'lib.a'] +
+                code, out = run([CXX, '-static', '-o', 'probe', 'obj/worker.o', 'lib.a'] +
                                 WALL_LINK + ['-pthread', '-Wl,--trace'], cwd=work)
                 taken = set(re.findall(r'lib\.a\((\S+?)\.o\)', out))
                 self._needed = {s for s in sources if s.replace('/', '_') in taken}

@@ -62,7 +62,7 @@ from tools.grading.selection import graded_exercises, hint_text, load_book  # no
 from tools.grading.structure import check_structure, exercise_text, parse_chapter  # noqa: E402,E501
 from tools.grading.submission import read_submission  # noqa: E402
 
-DEFAULT_CXXFLAGS = '-std=c++17 -O0 -ffp-contract=off -Wall -Wextra'
+DEFAULT_CXXFLAGS = ' '.join(grade_build.WORKER_CXXFLAGS)  # tools/compile/flags.mk
 
 
 def grade(args, path, out):

@@ -15,8 +15,9 @@ The zip holds, at its top, what grading needs and nothing else:
   GRADE_FLAGS in Gradescope's environment, to change them without touching
   a script;
 - course.toml, the plan, when one is given;
-- the chapters, their public and hidden tests, tests/calls/, and the tools grading runs (tools/grading/grade.py and what it
-  imports, tools/noweb/tangle.py and its filters, tools/deps.sh).
+- the chapters, their public and hidden tests, tests/calls/, and the folders
+  of tools/ that grading runs (grading/, compile/, noweb/, exercises/) with
+  tools/deps.sh.
 """
 import argparse
 import os
@@ -31,14 +32,12 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))  # the repository: im
 from tools.exercises import course  # noqa: E402
 from tools.grading.files import replacing  # noqa: E402
 
-TOOLS = ['__init__.py', 'deps.sh', 'grading/__init__.py', 'grading/grade.py', 'grading/batch.py',
-         'grading/build.py', 'grading/diagnostics.py', 'grading/files.py', 'grading/judging.py',
-         'grading/feedback.py', 'grading/records.py', 'grading/report.py',
-         'grading/selection.py', 'grading/structure.py',
-         'grading/submission.py', 'grading/sandbox.py', 'grading/compile_wall.py',
-         'exercises/__init__.py',
-         'exercises/markup.py', 'exercises/course.py', 'noweb/__init__.py', 'noweb/tangle.py',
-         'noweb/markup_filter.py', 'noweb/fragment_comments.py']
+# What grading runs: the grader, the compile flags, the tangle and its
+# filters, the exercise markup. Whole folders, so that a module added to one
+# of them is carried without a list to keep up (the kits' READMEs come along,
+# a few kB).
+TOOL_FILES = ['__init__.py', 'deps.sh']
+TOOL_FOLDERS = ['compile', 'exercises', 'grading', 'noweb']
 SCRIPTS = ['setup.sh', 'run_autograder']
 PLAN_NAME = 'course.toml'
 
@@ -102,8 +101,10 @@ def write(out, root, flags, plan):
     with replacing(out, binary=True) as archive, zipfile.ZipFile(archive, 'w') as z:
         for name in SCRIPTS:
             add(z, os.path.join(root, 'gradescope', name), name, executable=True)
-        for name in TOOLS:
+        for name in TOOL_FILES:
             add(z, os.path.join(root, 'tools', name), 'tools/' + name)
+        for folder in TOOL_FOLDERS:
+            add_tree(z, root, os.path.join('tools', folder))
         # Every chapter and its tests: grading checks the whole book's
         # exercise markup, and a plan names exercises of any chapter.
         for name in sorted(os.listdir(os.path.join(root, 'chapters'))):

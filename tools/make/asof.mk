@@ -8,44 +8,29 @@ SHELL := /bin/bash
 .SHELLFLAGS := -eo pipefail -c
 include tools/make/say.mk
 
-CXX ?= g++
+include tools/compile/flags.mk
+
 VARIANT := $(if $(SANITIZE),sanitize,$(if $(filter double,$(FLOAT)),double,float))
-SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all
-OPT := $(if $(SANITIZE),-O1 $(SANITIZERS) -fno-omit-frame-pointer,-O2)
-# -ffp-contract=off: a fused multiply-add would break the exact sign symmetry
-# of the watertight triangle test's edge functions (Chapter 3).
-CXXFLAGS := -std=c++17 -g $(OPT) -ffp-contract=off -Wall -Wextra -Werror \
-            $(if $(filter double,$(FLOAT)),-DLRT_FLOAT_AS_DOUBLE)
-# The tests are compiled at -O1 with GCC's inliner on. A clean make test spends
-# far more time compiling tests than running them, and this level compiles
-# them in about a quarter less time than -O2 (tests/ch06/test_bvh.cpp, about
-# 12 against 16 s of CPU) while running them nearly as fast. -Og compiles a
-# little faster still (about 10 s) but runs chapter 5's tests in 3.1 s against
-# 1.9, which a student waits for on every make test CH=05. The library, and
-# the inline code of its headers that a test calls, compute the same results
-# at any level: x86-64 rounds every float operation as written, and
-# -ffp-contract=off forbids the fused multiply-adds that would not. The
-# library itself stays at $(OPT).
-#
-# -g1 for the tests: line tables and function names, so a crash's backtrace
-# and a sanitizer's report still name the test's file and line, but no
-# description of local variables and types. Writing those out is over a third
-# of a test's compile (tests/ch06/test_bvh.cpp, about 14 against 9 s of CPU)
-# and makes its object nearly four times larger. The library keeps -g, so a
-# debugger shows the book's code in full; TEST_DEBUG=-g gives the tests, and
-# the code they compile from the book's headers, full debugging information.
-TEST_DEBUG ?= -g1
-TEST_CXXFLAGS := $(patsubst -g,$(TEST_DEBUG),$(patsubst -O2,-O1 -finline-functions \
-                   -finline-small-functions,$(CXXFLAGS)))
+# The flags themselves, and why each is there: tools/compile/flags.mk. Here
+# the variant picks among them: SANITIZE=1 builds at -O1 with the sanitizers,
+# FLOAT=double adds DOUBLE_FLAGS; the tests replace the library's level and
+# debugging information by their own (TEST_OPT, TEST_DEBUG).
+OPT := $(if $(SANITIZE),-O1 $(SANITIZERS) -fno-omit-frame-pointer,$(BOOK_OPT))
+CXXFLAGS := $(patsubst $(BOOK_OPT),$(OPT),$(BOOK_CXXFLAGS)) \
+            $(if $(filter double,$(FLOAT)),$(DOUBLE_FLAGS))
+TEST_CXXFLAGS := $(patsubst $(BOOK_DEBUG),$(TEST_DEBUG),$(patsubst \
+                   $(BOOK_OPT),$(TEST_OPT),$(CXXFLAGS)))
 LDFLAGS := $(if $(SANITIZE),$(SANITIZERS))
 
 chapter_number = $(firstword $(subst -, ,$(notdir $(1))))
 up_to_asof = $(shell [ $(call chapter_number,$(1)) -le $(ASOF) ] && echo $(1))
 ASOF_CHAPTERS := $(foreach c,$(CHAPTERS),$(call up_to_asof,$(c)))
-# Tests of chapter ONLY if given, otherwise of every chapter up to ASOF.
-TEST_NUMBERS := $(foreach c,$(ASOF_CHAPTERS),$(if $(ONLY),$(filter $(ONLY),$(call \
-                  chapter_number,$(c))),$(call chapter_number,$(c))))
-TEST_NUMBERS := $(foreach n,$(TEST_NUMBERS),$(if $(wildcard tests/ch$(n)/*.cpp),$(n)))
+# $(call tested_numbers,DIR): the chapters with tests in DIR/chNN/ that this
+# build tests: chapter ONLY if given, otherwise every chapter up to ASOF.
+tested_numbers = $(foreach n,$(foreach c,$(ASOF_CHAPTERS),$(call chapter_number,$(c))), \
+                   $(if $(and $(if $(ONLY),$(filter $(ONLY),$(n)),$(n)), \
+                              $(wildcard $(1)/ch$(n)/*.cpp)),$(n)))
+TEST_NUMBERS := $(strip $(call tested_numbers,tests))
 
 DIR := $(BUILD)/$(VARIANT)/asof/$(ASOF)
 # How the short lines name this build: "as of chapter 5", "as of chapter 5,
@@ -60,9 +45,12 @@ TEST_BINS := $(foreach n,$(TEST_NUMBERS),$(DIR)/tests/ch$(n))
 # The tests' precompiled header (see below).
 PCH_DIR := $(BUILD)/$(VARIANT)/pch
 PCH := $(PCH_DIR)/test_pch.h.gch
-TEST_FLAGS := -Itests -include pch/test_pch.h -Winvalid-pch
+# A test's compile includes the precompiled header's source, whose .gch the
+# compiler then reads instead (compile-commands names the header itself).
+PCH_INCLUDE := pch/test_pch.h
+TEST_FLAGS = -Itests -include $(PCH_INCLUDE) -Winvalid-pch
 
-.PHONY: tangle lib tests list-tests
+.PHONY: tangle lib tests list-tests compile-commands
 
 # The tangle is redone only when a chapter or a tool it runs changed (tangle.py
 # rewrites only the files whose text changed, so make then recompiles only what
@@ -92,6 +80,18 @@ tests: $(TEST_BINS)
 
 list-tests:
 	@$(foreach n,$(TEST_NUMBERS),echo "asof$(ASOF)/ch$(n)=$(DIR)/tests/ch$(n)";)
+
+# compile_commands.json (the Makefile's make), for clangd and IDEs: the
+# readable tangle, tangled/, and the tests compiled as this build compiles
+# the library and the tests, named from the repository's root
+# (tools/compile/compile_commands.py).
+COMPILE_COMMANDS ?= compile_commands.json
+compile-commands: PCH_INCLUDE := tools/compile/test_pch.h
+compile-commands:
+	$(call say,GEN,$(COMPILE_COMMANDS))
+	$(Q)python3 tools/compile/compile_commands.py --src tangled --cxx '$(CXX)' \
+	    --cxxflags '$(CXXFLAGS)' --test-cxxflags '$(TEST_CXXFLAGS)' \
+	    --test-flags '$(TEST_FLAGS)' > $(COMPILE_COMMANDS)
 
 $(LIB): $(LIB_OBJS)
 	$(call say,AR,liblrt.a ($(AS_OF)))
@@ -175,13 +175,17 @@ compile-links:
 	@ln -sfn $(abspath tests) $(CC_DIR)/tests
 	@ln -sfn $(abspath $(PCH_DIR)) $(CC_DIR)/pch
 
+# $(call test_binary,NN,KIND,SOURCES,WHAT): the GoogleTest binary
+# $(DIR)/KIND/chNN of the tests SOURCES/chNN/*.cpp, compiled into
+# $(DIR)/obj/KIND/ and linked with the library; WHAT names them in its short
+# line. The public tests here, the hidden ones in tools/make/hidden.mk.
 define test_binary
-$(DIR)/tests/ch$(1): $(patsubst tests/%.cpp,$(DIR)/obj/tests/%.o,$(wildcard \
-                       tests/ch$(1)/*.cpp)) $(if $(LIB_OBJS),$(LIB))
+$(DIR)/$(2)/ch$(1): $(patsubst $(3)/%.cpp,$(DIR)/obj/$(2)/%.o,$(wildcard \
+                      $(3)/ch$(1)/*.cpp)) $(if $(LIB_OBJS),$(LIB))
 	@mkdir -p $$(@D)
-	$(call say,LD,tests of chapter $(patsubst 0%,%,$(1)) ($(AS_OF)))
+	$(call say,LD,$(4) of chapter $(patsubst 0%,%,$(1)) ($(AS_OF)))
 	$(Q)$(CXX) $(LDFLAGS) -o $$@ $$^ -lgtest_main -lgtest -pthread
 endef
-$(foreach n,$(TEST_NUMBERS),$(eval $(call test_binary,$(n))))
+$(foreach n,$(TEST_NUMBERS),$(eval $(call test_binary,$(n),tests,tests,tests)))
 
 -include $(shell find $(DIR)/obj -name '*.d' 2>/dev/null) $(wildcard $(PCH_DIR)/*.d)

@@ -13,10 +13,10 @@
 # against the library and Google Benchmark (Debian's libbenchmark-dev), and
 # runs it single-threaded. So the library and the program are measured as
 # the configuration builds them, and configurations never overwrite each
-# other's files. BENCH_CXXFLAGS replaces only the optimization flags:
-# -std=c++17, -ffp-contract=off (which the watertight triangle test needs)
-# and the warnings stay. The program records the compiler and the flags, and
-# prints them with its table and in its JSON.
+# other's files. BENCH_CXXFLAGS replaces only the optimization flags of the
+# book's (tools/compile/flags.mk): the language, -ffp-contract=off (which the
+# watertight triangle test needs) and the warnings stay. The program records
+# the compiler and the flags, and prints them with its table and in its JSON.
 #
 # Data: if ../shared/bench/gen_bench_data.py is there (the shared generator,
 # beside the repository; BENCH_GENERATOR=path names another), it writes the
@@ -27,7 +27,7 @@
 # Google Benchmark's own, e.g. BENCH_ARGS=--benchmark_filter=bunny_L2.
 
 BENCH_CXX ?= $(CXX)
-BENCH_CXXFLAGS ?= -O2
+BENCH_CXXFLAGS ?= $(BOOK_OPT)
 BENCH_ARGS ?=
 # The default configuration is the library's own (tools/make/asof.mk: $(CXX),
 # -O2), so it shares the library's build directory and make compiles the
@@ -39,7 +39,7 @@ BENCH_ARGS ?=
 # most 8 bytes as if it wrote 32).
 bench_equal = $(and $(findstring $(1),$(2)),$(findstring $(2),$(1)))
 BENCH_DEFAULT := $(and $(call bench_equal,$(strip $(BENCH_CXX)),$(CXX)),$(call \
-                   bench_equal,$(strip $(BENCH_CXXFLAGS)),-O2))
+                   bench_equal,$(strip $(BENCH_CXXFLAGS)),$(BOOK_OPT)))
 BENCH_CONFIG_NAME := $(shell printf '%s' '$(BENCH_CXX) $(BENCH_CXXFLAGS)' | \
                        tr -c 'A-Za-z0-9.+-' '_')
 BENCH_BUILD := $(if $(BENCH_DEFAULT),$(BUILD),$(BUILD)/bench/$(BENCH_CONFIG_NAME))
@@ -49,9 +49,10 @@ BENCH_BIN := $(BENCH_DIR)/bench/bvhbench
 BENCH_JSON := $(BENCH_BUILD)/bvhbench.json
 BENCH_DATA := $(BUILD)/bench-data
 BENCH_GENERATOR := ../shared/bench/gen_bench_data.py
-BENCH_ALL_CXXFLAGS := -std=c++17 -g $(BENCH_CXXFLAGS) -ffp-contract=off \
-                      -Wall -Wextra $(if $(BENCH_DEFAULT),-Werror) \
-                      $(if $(filter double,$(FLOAT)),-DLRT_FLOAT_AS_DOUBLE)
+# The book's flags (tools/compile/flags.mk) with the configuration's level.
+BENCH_ALL_CXXFLAGS := $(patsubst $(BOOK_OPT),$(BENCH_CXXFLAGS),$(filter-out $(if \
+                        $(BENCH_DEFAULT),,-Werror),$(BOOK_CXXFLAGS))) \
+                      $(if $(filter double,$(FLOAT)),$(DOUBLE_FLAGS))
 BENCH_ASOF := $(ASOF) ASOF=$(LAST) BUILD=$(BENCH_BUILD) SANITIZE= \
               CXX='$(BENCH_CXX)' CXXFLAGS='$(BENCH_ALL_CXXFLAGS)'
 # The program names its configuration from these two strings.

@@ -25,12 +25,12 @@
 
 .PHONY: exercises validate-exercises try-exercises test-hidden lint-exercises
 
-# Here CHAPTERS may name chapter numbers; everywhere else it lists chapter files.
-EXERCISE_CHAPTERS := $(filter-out %.md,$(CHAPTERS))
 EXERCISES_OUT := $(BUILD)/exercises
-
+# The chapters given by number (CHAPTERS="03 05", CHOSEN_NUMBERS in the
+# Makefile), or an assignment of a plan.
 KIT_CHOICE := $(if $(PLAN),--plan $(PLAN))$(if $(ASSIGNMENT), --assignment $(ASSIGNMENT)) \
-              $(EXERCISE_CHAPTERS)
+              $(CHOSEN_NUMBERS)
+HIDDEN_MAKE = $(MAKE) --no-print-directory -f tools/make/hidden.mk
 
 exercises:
 	python3 tools/exercises/kits.py build --out $(EXERCISES_OUT) $(KIT_CHOICE)
@@ -43,14 +43,14 @@ validate-exercises: exercises
 	python3 tools/exercises/kits.py validate --out $(EXERCISES_OUT)
 
 lint-exercises:
-	python3 tools/exercises/markup.py lint $(filter %.md,$(CHAPTERS))
+	python3 tools/exercises/markup.py lint $(CHAPTERS)
 
 test-hidden: $(LINTED)
 	@bins=(); \
 	for n in $(PREFIXES); do \
-	    $(ASOF) ASOF=$$n ONLY=$(CH) tangle; \
-	    $(ASOF) -f tools/make/hidden.mk ASOF=$$n ONLY=$(CH) -j$(JOBS) hidden-tests; \
-	    bins+=($$($(ASOF) -f tools/make/hidden.mk -s ASOF=$$n ONLY=$(CH) list-hidden-tests)); \
+	    $(HIDDEN_MAKE) ASOF=$$n ONLY=$(CH) tangle; \
+	    $(HIDDEN_MAKE) ASOF=$$n ONLY=$(CH) -j$(JOBS) hidden-tests; \
+	    bins+=($$($(HIDDEN_MAKE) -s ASOF=$$n ONLY=$(CH) list-hidden-tests)); \
 	done; \
 	if [ $${#bins[@]} -eq 0 ]; then echo "test-hidden: no hidden tests"; exit 0; fi; \
 	python3 tools/testing/runtests.py "$${bins[@]}"

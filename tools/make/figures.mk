@@ -23,7 +23,8 @@
 
 FIGURES_DIR := $(BUILD)/float/asof/$(LAST)
 FIGURES_BIN := $(FIGURES_DIR)/render/figures
-FIGURES_CXXFLAGS := -std=c++17 -O2 -g -ffp-contract=off -Wall -Wextra -Werror
+# The flags of the library it links (tools/compile/flags.mk), Float as float.
+FIGURES_CXXFLAGS := $(BOOK_CXXFLAGS)
 FIGURES_ASOF := $(ASOF) ASOF=$(LAST) FLOAT= SANITIZE=
 BENCH_LEVELS_DATA := $(BUILD)/bench-levels
 BENCH_LEVELS_JSON := figures/data/bvhbench-levels.json

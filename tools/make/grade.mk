@@ -29,8 +29,8 @@
 .PHONY: grade grade-batch gradescope
 
 GRADE_CACHE = $(BUILD)/grade/cache
-# Here CHAPTERS may name chapter numbers; everywhere else it lists chapter files.
-GRADE_CHAPTERS = $(filter-out %.md,$(CHAPTERS))
+# The chapters given by number: CHAPTERS="02 05", CHOSEN_NUMBERS in the Makefile.
+GRADE_CHAPTERS = $(CHOSEN_NUMBERS)
 GRADE_PLAN = $(if $(PLAN),--plan $(PLAN))$(if $(ASSIGNMENT), --assignment $(ASSIGNMENT))
 
 grade:

@@ -26,10 +26,12 @@ import hashlib
 import json
 import os
 import re
-import subprocess
 import sys
-import tempfile
 import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))  # the repository: import tools.*
+from tools.testing import gtest  # noqa: E402
 
 TIME_LIMIT = 900  # seconds for one test binary; a hang must not stall CI
 
@@ -42,32 +44,11 @@ def skip_reason(output, test):
     return match.group(1) if match else 'no reason given'
 
 
-def run_with_report(command, env=None, timeout=None):
-    """Runs command(report), a command that writes a JSON report to the path
-    `report`: (output, exit status, the report, or None if none was written)."""
-    with tempfile.TemporaryDirectory() as tmp:
-        report = os.path.join(tmp, 'report.json')
-        try:
-            proc = subprocess.run(command(report), capture_output=True, text=True,
-                                  timeout=timeout, env=env)
-            output, code = proc.stdout + proc.stderr, proc.returncode
-        except subprocess.TimeoutExpired as e:
-            output, code = (e.stdout or b'').decode(errors='replace'), 'timeout'
-        try:
-            with open(report) as f:
-                return output, code, json.load(f)
-        except (OSError, ValueError):
-            return output, code, None
-
-
 def run_shard(binary, index, total):
     """Runs one shard of a GoogleTest binary: (output, exit status, its test
     suites or None)."""
     env = dict(os.environ, GTEST_TOTAL_SHARDS=str(total), GTEST_SHARD_INDEX=str(index))
-    output, code, report = run_with_report(
-        lambda report: [binary, '--gtest_brief=1', '--gtest_output=json:' + report],
-        env=env, timeout=TIME_LIMIT)
-    return output, code, report.get('testsuites') if isinstance(report, dict) else None
+    return gtest.run(binary, ['--gtest_brief=1'], env=env, timeout=TIME_LIMIT)
 
 
 def summarize(label, binary, shards, same_as=None):
@@ -83,17 +64,16 @@ def summarize(label, binary, shards, same_as=None):
             failed.append(label + ' (no report)')
             continue
         shard_failed = []
-        for suite in suites:
-            for test in suite['testsuite']:
-                if test.get('result') == 'SKIPPED':
-                    skipped.append('%s %s.%s: %s' % (label, suite['name'], test['name'],
-                                                     skip_reason(output, test)))
-                if test.get('result') == 'SKIPPED' or test.get('status') == 'NOTRUN':
-                    continue
-                if test.get('failures'):
-                    shard_failed.append('%s %s.%s' % (label, suite['name'], test['name']))
-                else:
-                    passed += 1
+        for suite, test in gtest.tests(suites):
+            if test.get('result') == 'SKIPPED':
+                skipped.append('%s %s.%s: %s' % (label, suite, test['name'],
+                                                 skip_reason(output, test)))
+            if not gtest.ran(test):
+                continue
+            if test.get('failures'):
+                shard_failed.append('%s %s.%s' % (label, suite, test['name']))
+            else:
+                passed += 1
         if shard_failed or code != 0:
             print(output)
             if not shard_failed:  # exited non-zero after all tests passed (a leak report, say)
@@ -142,8 +122,8 @@ def run_python_file(path):
     """Runs one file's tests in a Python of its own, so that files run side by
     side and one that crashes or exits takes nothing else with it:
     (output, exit status, report or None)."""
-    return run_with_report(lambda report: [sys.executable, os.path.abspath(__file__),
-                                           '--python-report', report, path])
+    return gtest.run_with_report(lambda report: [sys.executable, os.path.abspath(__file__),
+                                                 '--python-report', report, path])
 
 
 def write_python_report(path, report):

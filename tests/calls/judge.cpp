@@ -37,7 +37,9 @@
 // rounds are intercepted, never reported; the book's code only ever steers a
 // run whose failures are thrown away, and never answers for the student.
 
-#include "calls/core.h"
+#include "calls/exercise_test.h"
+#include "calls/reply.h"
+#include "calls/rpc.h"
 
 #include <gtest/gtest-spi.h>
 

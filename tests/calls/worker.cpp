@@ -8,10 +8,12 @@
 // objects that calls kept are dropped.
 //
 // Frames, both ways: a 4-byte length n, then n bytes: an 8-byte id and the
-// message (calls.h encodes both). What the student's code prints goes to the
+// message (rpc.h and reply.h encode it). What the student's code prints goes to the
 // worker's standard output and error, which the judge sends to a log.
 
-#include "calls/core.h"
+#include "calls/memory_files.h"
+#include "calls/reply.h"
+#include "calls/rpc.h"
 
 #include LRT_CALLS_HEADER
 

@@ -1,6 +1,7 @@
 // Exercise calls for the lrt library: the framework (core.h) and the
 // encoding of the library's geometry (points, vectors, normals, boxes, rays,
-// matrices and transforms), member by member, bit for bit.
+// matrices and transforms), member by member, bit for bit. Included by each
+// of the book's tests/chNN/exercise_calls.h.
 
 #ifndef LRT_TESTS_CALLS_H
 #define LRT_TESTS_CALLS_H

@@ -39,7 +39,10 @@
 // rounds are intercepted, never reported; the book's code only ever steers a
 // run whose failures are thrown away, and never answers for the student.
 
-#include "calls/core.h"
+#include "calls/exercise_test.h"
+#include "calls/framing.h"
+#include "calls/reply.h"
+#include "calls/rpc.h"
 
 #include <gtest/gtest-spi.h>
 
@@ -282,8 +285,7 @@ class Worker {
         from = fromWorker[0];
         fcntl(to, F_SETFL, O_NONBLOCK);
         fcntl(from, F_SETFL, O_NONBLOCK);
-        inbox.clear();
-        taken = 0;
+        inbox.Clear();
         return true;
     }
 
@@ -336,12 +338,7 @@ class Worker {
             return replies;
         }
         std::string out;
-        for (const auto &request : requests) {
-            uint32_t n = uint32_t(request.second.size() + 8);
-            out.append(reinterpret_cast<const char *>(&n), 4);
-            out.append(reinterpret_cast<const char *>(&request.first), 8);
-            out += request.second;
-        }
+        for (const auto &request : requests) AppendFrame(&out, request.first, request.second);
         Pump(out, requests, &replies);
         if (replies.size() < requests.size()) {
             // The last reply says what went wrong; the rest share it.
@@ -397,11 +394,10 @@ class Worker {
                 char buf[1 << 16];
                 ssize_t n = read(from, buf, sizeof(buf));
                 if (n > 0) {
-                    inbox.append(buf, size_t(n));
+                    inbox.Append(buf, size_t(n));
                     while (TakeReply(requests, replies, &last)) {
                     }
-                    inbox.erase(0, taken);
-                    taken = 0;
+                    inbox.Compact();
                     if (!overLimit.empty()) {
                         Stop();
                         replies->push_back(StatusReply(Status::BadReply, overLimit));
@@ -431,10 +427,8 @@ class Worker {
     // Moves one complete reply from the inbox to the replies.
     bool TakeReply(const std::vector<std::pair<uint64_t, std::string>> &requests,
                    std::vector<std::string> *replies, double *last) {
-        size_t have = inbox.size() - taken;
-        if (replies->size() >= requests.size() || have < 4) return false;
         uint32_t n;
-        std::memcpy(&n, inbox.data() + taken, 4);
+        if (replies->size() >= requests.size() || !inbox.NextLength(&n)) return false;
         if (n > kMaxFrame) {
             overLimit = "the answer was larger than " + std::to_string(kMaxFrame >> 20) +
                         " MB (what the code returned or threw)";
@@ -446,20 +440,19 @@ class Worker {
                         std::to_string(kMaxTestReplies >> 20) + " MB in all";
             return false;
         }
-        if (n < 8) {
+        if (FrameInbox::TooShort(n)) {
             failed = true;
             return false;
         }
-        if (have < 4 + size_t(n)) return false;
         uint64_t id;
-        std::memcpy(&id, inbox.data() + taken + 4, 8);
+        std::string reply;
+        if (!inbox.Take(&id, &reply)) return false;
         if (id != requests[replies->size()].first) {
             failed = true;
             return false;
         }
-        replies->push_back(inbox.substr(taken + 12, n - 8));
+        replies->push_back(std::move(reply));
         received += counted;
-        taken += 4 + size_t(n);
         *last = Now();
         return true;
     }
@@ -476,8 +469,7 @@ class Worker {
     bool failed = false;
     std::string overLimit;   // why the worker's last frame was refused
     size_t received = 0;     // bytes of replies in this test that count
-    std::string inbox;    // bytes read from the worker
-    size_t taken = 0;     // of which replies already taken
+    FrameInbox inbox;     // replies read from the worker
 };
 
 Worker *worker = nullptr;

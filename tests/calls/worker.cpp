@@ -7,11 +7,14 @@
 // nothing of the test that asked. A request with id 0 ends a test: the
 // objects that calls kept are dropped.
 //
-// Frames, both ways: a 4-byte length n, then n bytes: an 8-byte id and the
-// message (calls.h encodes both). What the student's code prints goes to the
-// worker's standard output and error, which the judge sends to a log.
+// Frames, both ways, as framing.h writes and reads them. What the student's
+// code prints goes to the worker's standard output and error, which the
+// judge sends to a log.
 
-#include "calls/core.h"
+#include "calls/framing.h"
+#include "calls/memory_files.h"
+#include "calls/reply.h"
+#include "calls/rpc.h"
 
 #include LRT_CALLS_HEADER
 
@@ -32,32 +35,19 @@ class Channel {
     // The next request, or false at the end of the input.
     bool Next(uint64_t *id, std::string *message) {
         for (;;) {
-            size_t have = in.size() - at;
-            if (have >= 12) {
-                uint32_t n;
-                std::memcpy(&n, in.data() + at, 4);
-                if (n < 8) return false;
-                if (have >= 4 + size_t(n)) {
-                    std::memcpy(id, in.data() + at + 4, 8);
-                    message->assign(in, at + 12, n - 8);
-                    at += 4 + size_t(n);
-                    return true;
-                }
-            }
+            uint32_t n;
+            if (in.NextLength(&n) && lrt::calls::FrameInbox::TooShort(n)) return false;
+            if (in.Take(id, message)) return true;
             if (!Flush()) return false;
-            in.erase(0, at);
-            at = 0;
+            in.Compact();
             char buf[1 << 16];
             ssize_t r = read(3, buf, sizeof(buf));
             if (r <= 0) return false;
-            in.append(buf, size_t(r));
+            in.Append(buf, size_t(r));
         }
     }
     void Send(uint64_t id, const std::string &reply) {
-        uint32_t length = uint32_t(reply.size() + 8);
-        out.append(reinterpret_cast<const char *>(&length), 4);
-        out.append(reinterpret_cast<const char *>(&id), 8);
-        out += reply;
+        lrt::calls::AppendFrame(&out, id, reply);
     }
     bool Flush() {
         const char *p = out.data();
@@ -73,8 +63,8 @@ class Channel {
     }
 
   private:
-    std::string in, out;
-    size_t at = 0;
+    lrt::calls::FrameInbox in;
+    std::string out;
 };
 
 std::string Serve(const std::string &message) {

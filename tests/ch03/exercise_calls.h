@@ -17,6 +17,7 @@
 #include "lrt/shapes/triangle.h"
 #include "lrt/core/plyreader.h"
 #include "calls/calls.h"
+#include "calls/memory_files.h"
 
 #include <unistd.h>
 

@@ -6,7 +6,7 @@
 
 #pragma once
 
-#include "exercise_calls.h"
+#include "remote_bvh.h"
 #include "lrt/accelerators/bvh.h"
 #include "lrt/core/plyreader.h"
 

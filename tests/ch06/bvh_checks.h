@@ -1,7 +1,7 @@
 // Checks of BVHAccel's trees for chapter 6's tests, public and hidden (the
 // hidden tests include this file as "../../ch06/bvh_checks.h"). The trees
 // are lrt::BVHAccel's or, in the exercises' tests, ex::BVHAccel's: the nodes
-// that the worker built (exercise_calls.h), checked there to be a tree.
+// that the worker built (remote_bvh.h), checked there to be a tree.
 //
 //   TreeWalker         traces a BVHAccel's tree without BVHAccel's own
 //                      traversal, so that the trees built by the SAH and
@@ -19,7 +19,7 @@
 
 #pragma once
 
-#include "exercise_calls.h"
+#include "remote_bvh.h"
 #include "lrt/accelerators/bvh.h"
 #include "lrt/core/slabtest.h"
 

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "bvh_checks.h"
-#include "exercise_calls.h"
+#include "remote_bvh.h"
 #include "lrt/accelerators/bvh.h"
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/triangle.h"

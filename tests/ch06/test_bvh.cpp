@@ -10,13 +10,13 @@
 // checked against the cost model in double precision; the Morton codes and
 // the order of an HLBVH tree's primitives along the curve; the order in
 // which BVHAccel's traversal visits children, seen through the primitives it
-// tests. They reach BVHAccel through the exercise calls (exercise_calls.h:
+// tests. They reach BVHAccel through the exercise calls (remote_bvh.h:
 // ex::BVHAccel and the others); the other tests use no exercise's code (see
 // Plain below).
 
 #include "bvh_checks.h"
 #include "bvh_scenes.h"
-#include "exercise_calls.h"
+#include "remote_bvh.h"
 #include "lrt/accelerators/bvh.h"
 #include "lrt/shapes/triangle.h"
 
@@ -293,7 +293,7 @@ TEST(BVHHelpers, StatsSAHCost) {
 // The exercises' tests walk the nodes that the worker answers with, which a
 // wrong or hostile worker may fill with anything: a node array that is not a
 // tree as BVHAccel lays it out is refused before any check walks it, and so
-// is a primitive's index outside the scene (exercise_calls.h).
+// is a primitive's index outside the scene (remote_bvh.h).
 TEST(ExerciseCalls, AnswersThatAreNotATreeAreRefused) {
     Scene scene;
     for (int i = 0; i < 8; ++i)

@@ -7,7 +7,7 @@
 
 #include "bvh_bunny.h"
 #include "bvh_checks.h"
-#include "exercise_calls.h"
+#include "remote_bvh.h"
 #include "lrt/accelerators/bvh.h"
 
 #include <gtest/gtest.h>

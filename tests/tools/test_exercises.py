@@ -291,14 +291,14 @@ class StudentEditionTest(unittest.TestCase):
                          original.split('<<Add up the squares of v>>=')[0])
 
     def test_later_stub_message_is_the_one_make_test_skips_on(self):
-        # tests/calls/core.h recognizes a later assignment's stub by its
+        # tests/calls/rpc.h recognizes a later assignment's stub by its
         # words; the two must agree.
         book = markup.load([os.path.join(FIXTURE, CH1)], root=FIXTURE, tests=False)
         message = markup.stub_message(book.exercises[1], 'Clamp v to the range', True)
         self.assertEqual(message, 'Exercise ex-1.2 comes with a later assignment: leave '
                          '<Clamp v to the range> (Section 1.2, Clamping) as it is for now')
-        core = read(os.path.join(ROOT, 'tests', 'calls', 'core.h'))
-        self.assertIn('" %s: "' % markup.LATER_STUB, core)
+        rpc = read(os.path.join(ROOT, 'tests', 'calls', 'rpc.h'))
+        self.assertIn('" %s: "' % markup.LATER_STUB, rpc)
 
     def test_stub_lines_fit_the_column(self):
         lines = markup.throw_lines(' ' * 12, 'Exercise ex-6.12 is not done yet: write <'

@@ -59,8 +59,9 @@ TANGLE_TOOLS = ['tools/noweb/tangle.py', 'tools/noweb/markup_filter.py', 'tools/
 # MB of one file that a worker's build may write: the book's workers are
 # about 3 MB, their objects less.
 BUILD_FILE_MB = 64
-CALL_SOURCES = ['tests/calls/core.h', 'tests/calls/calls.h', 'tests/calls/worker.cpp',
-                'tests/calls/wall.cpp']
+CALL_SOURCES = ['tests/calls/' + name for name in (
+    'core.h', 'calls.h', 'encoding.h', 'reply.h', 'kept.h', 'memory_files.h', 'rpc.h',
+    'exercise_test.h', 'framing.h', 'worker.cpp', 'wall.cpp')]
 # The worker's entry point: tests/calls/wall.cpp's routine that installs the
 # system-call filter before the C library, or any of the student's code, runs
 # (the student's code can run at static-initialization time), then jumps to

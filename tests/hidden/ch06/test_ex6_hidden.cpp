@@ -20,13 +20,13 @@
 //            components, and the bunny-sized closed mesh; brute force.
 //
 // Every test reaches BVHAccel and the Morton codes through the exercise
-// calls (tests/ch06/exercise_calls.h): the worker builds and traces the
+// calls (tests/ch06/remote_bvh.h): the worker builds and traces the
 // trees, and the checks run here on what it answers. Random tests draw
 // their cases from calls::Seed() (new ones at each grading) and state their
 // case counts, here and graded.
 
 #include "../../ch06/bvh_checks.h"
-#include "ch06/exercise_calls.h"
+#include "ch06/remote_bvh.h"
 #include "lrt/accelerators/bvh.h"
 #include "lrt/core/slabtest.h"
 

@@ -612,7 +612,7 @@ def c_string(text):
 
 # How the stub of an exercise that a later assignment of a course plan sets
 # (docs/course.md) begins its message after the exercise's id. In `make test`,
-# a test that reaches such a stub is skipped, not failed: tests/calls/core.h
+# a test that reaches such a stub is skipped, not failed: tests/calls/rpc.h
 # looks for these words.
 LATER_STUB = 'comes with a later assignment'
 

@@ -69,7 +69,7 @@ def try_student(out, manifest, make_args):
     the assignment's own stubs: a test of a chosen exercise, or a test whose
     failure names a chosen exercise's stub (a later chapter's test that uses
     that code); it may be skipped only by the stub of a later assignment's
-    exercise (tests/calls/core.h); and each chosen exercise whose chapter's
+    exercise (tests/calls/rpc.h, IsLater); and each chosen exercise whose chapter's
     tests ran fails some test."""
     kit = os.path.join(out, 'student')
     proc = make(kit, ['test'] + make_args)

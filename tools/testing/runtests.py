@@ -18,7 +18,7 @@ in the same environment gives the same results, which are then reported
 under both labels. The last line, "tests: N passed, M failed", is the one CI
 reads; it adds ", K skipped" when tests were skipped, each listed above it
 with what it said (a course's kit skips the tests that reach a later
-assignment's stub, tests/calls/core.h).
+assignment's stub, tests/calls/rpc.h).
 """
 import argparse
 import concurrent.futures

@@ -15,7 +15,7 @@
 // lrt.h includes
 #include "lrt/shapes/triangle.h"
 // lrt.h includes
-#include "lrt/core/plyreader.h"
+#include "lrt/shapes/plyreader.h"
 // lrt.h includes
 #include "lrt/core/slabtest.h"
 // lrt.h includes

@@ -8,7 +8,7 @@
 
 #include "exercise_calls.h"
 #include "lrt/accelerators/bvh.h"
-#include "lrt/core/plyreader.h"
+#include "lrt/shapes/plyreader.h"
 
 #include <gtest/gtest.h>
 

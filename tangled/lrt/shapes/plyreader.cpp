@@ -1,5 +1,5 @@
-// lrt/core/plyreader.cpp: tangled from chapters/03-shapes.md. Edit the chapter, not this file.
-#include "lrt/core/plyreader.h"
+// lrt/shapes/plyreader.cpp: tangled from chapters/03-shapes.md. Edit the chapter, not this file.
+#include "lrt/shapes/plyreader.h"
 #include "lrt/shapes/triangle.h"
 
 #include <algorithm>

@@ -1,65 +1,20 @@
 // lrt/accelerators/fastbvh.cpp: tangled from chapters/07-fast-bvh.md. Edit the chapter, not this file.
 #include "lrt/accelerators/fastbvh.h"
+#include "lrt/core/platform.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <limits>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <typeinfo>
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace lrt {
 
-// Large Array Definitions
-constexpr size_t largePageSize = size_t(2) << 20;
-constexpr size_t largePageThreshold = 4 * largePageSize;
-
-void *AllocateLargeArray(size_t bytes, size_t alignment) {
-#if defined(__linux__)
-    if (bytes >= largePageThreshold) {
-        if (bytes > size_t(-1) - largePageSize) throw std::bad_alloc();
-        size_t rounded = (bytes + largePageSize - 1) / largePageSize *
-                         largePageSize;
-        void *p = std::aligned_alloc(largePageSize, rounded);
-        if (!p) throw std::bad_alloc();
-        (void)madvise(p, rounded, MADV_HUGEPAGE);
-        return p;
-    }
-#endif
-    return ::operator new(bytes, std::align_val_t(alignment));
-}
-
-void FreeLargeArray(void *p, size_t bytes, size_t alignment) {
-#if defined(__linux__)
-    if (bytes >= largePageThreshold) {
-        std::free(p);
-        return;
-    }
-#endif
-    ::operator delete(p, std::align_val_t(alignment));
-}
 // Triangle Utility Functions
 static inline Float MaxAbs(Float a, Float b, Float c) {
     return std::max(std::abs(a), std::max(std::abs(b), std::abs(c)));
 }
-// Define the LRT_PREFETCH macro
-#if defined(__GNUC__) || defined(__clang__)
-#define LRT_PREFETCH(address) __builtin_prefetch(address)
-#else
-#define LRT_PREFETCH(address) ((void)(address))
-#endif
-// Define the LRT_ALWAYS_INLINE macro
-#if defined(__GNUC__) || defined(__clang__)
-#define LRT_ALWAYS_INLINE inline __attribute__((always_inline))
-#define LRT_ALWAYS_INLINE_LAMBDA __attribute__((always_inline))
-#else
-#define LRT_ALWAYS_INLINE inline
-#define LRT_ALWAYS_INLINE_LAMBDA
-#endif
 // FastBVHAccel Local Declarations
 struct FastBVHBuildPrim {
     Float lo[4], hi[4];

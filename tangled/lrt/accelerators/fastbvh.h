@@ -4,13 +4,13 @@
 #include "lrt/accelerators/bvh.h"
 #include "lrt/core/base.h"
 #include "lrt/core/geometry.h"
+#include "lrt/core/platform.h"
 #include "lrt/core/primitive.h"
 #include "lrt/shapes/triangle.h"
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
-#include <new>
 #include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -18,31 +18,6 @@
 
 namespace lrt {
 
-// Large Array Declarations
-void *AllocateLargeArray(size_t bytes, size_t alignment);
-void FreeLargeArray(void *p, size_t bytes, size_t alignment);
-
-template <typename T>
-struct LargeArrayAllocator {
-    using value_type = T;
-    LargeArrayAllocator() = default;
-    template <typename U>
-    LargeArrayAllocator(const LargeArrayAllocator<U> &) {}
-    T *allocate(size_t n) {
-        if (n > size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
-        return static_cast<T *>(AllocateLargeArray(n * sizeof(T), alignof(T)));
-    }
-    void deallocate(T *p, size_t n) {
-        FreeLargeArray(p, n * sizeof(T), alignof(T));
-    }
-    template <typename U>
-    bool operator==(const LargeArrayAllocator<U> &) const { return true; }
-    template <typename U>
-    bool operator!=(const LargeArrayAllocator<U> &) const { return false; }
-};
-
-template <typename T>
-using LargeArray = std::vector<T, LargeArrayAllocator<T>>;
 struct FastBox;
 // FastBVHAccel Node Types
 constexpr int fastBVHWidth = 4;

@@ -37,12 +37,10 @@ struct alignas(64) FastBVHNode {
 };
 static_assert(sizeof(FastBVHNode) == (sizeof(Float) == 4 ? 128 : 256),
               "FastBVHNode should fill two cache lines");
-// FastBVHAccel Node Types
 struct alignas(16) FastTriangle {
     Float c[3][4];  // c[axis][vertex]; c[axis][3] is zero
     Point3f Vertex(int i) const { return Point3f(c[0][i], c[1][i], c[2][i]); }
 };
-// FastBVHAccel Node Types
 struct FastTriangleInfo {
     const Triangle *triangle;
     int faceIndex;
@@ -81,7 +79,6 @@ class FastBVHAccel : public Aggregate {
     Bounds3f WorldBound() const override;
     bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override;
     bool IntersectP(const Ray &ray) const override;
-    // FastBVHAccel Public Methods
     const LargeArray<FastBVHNode> &Nodes() const { return nodes; }
     FastBVHChild Root() const { return root; }
     const std::vector<std::shared_ptr<Primitive>> &Primitives() const {
@@ -93,7 +90,6 @@ class FastBVHAccel : public Aggregate {
   private:
     // FastBVHAccel Private Methods
     void SetRoot(const FastBox &box, FastBVHChild child);
-    // FastBVHAccel Private Methods
     void CopyTree(const BVHAccel &bvh);
     // FastBVHAccel Private Data
     int maxPrimsInNode;

@@ -39,7 +39,6 @@ struct RaySet {
         return Ray(Point3f(r[0], r[1], r[2]), Vector3f(r[3], r[4], r[5]));
     }
 };
-// BVH Benchmark Declarations
 struct BenchOptions {
     std::string dataDir = "build/bench-data";
     std::string baseMesh = "data/bunny.ply";
@@ -80,7 +79,6 @@ void SubdivideMesh(PlyMesh *m) {
     }
     m->vertexIndices.swap(out);
 }
-// BVH Benchmark Data Generation
 struct Vec3d {
     double x, y, z;
 };
@@ -99,7 +97,6 @@ void AppendRay(RaySet *rays, const Vec3d &o, const Vec3d &d) {
     for (double v : {o.x, o.y, o.z, d.x, d.y, d.z})
         rays->data.push_back(float(v));
 }
-// BVH Benchmark Data Generation
 RaySet MakeCameraRays(const double lo[3], const double hi[3], int res) {
     Vec3d c = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]),
                0.5 * (lo[2] + hi[2])};
@@ -128,7 +125,6 @@ RaySet MakeCameraRays(const double lo[3], const double hi[3], int res) {
     }
     return rays;
 }
-// BVH Benchmark Data Generation
 class PythonRandom {
   public:
     explicit PythonRandom(uint32_t seed) { InitByArray(seed); }
@@ -167,7 +163,6 @@ class PythonRandom {
         }
         mt[0] = 0x80000000u;
     }
-    // PythonRandom Private Methods
     uint32_t Next() {
         if (index >= N) {
             for (int i = 0; i < N; ++i) {
@@ -187,7 +182,6 @@ class PythonRandom {
     uint32_t mt[N];
     int index = N;
 };
-// BVH Benchmark Data Generation
 RaySet MakeIncoherentRays(const double lo[3], const double hi[3],
                           size_t count, uint32_t seed) {
     PythonRandom rng(seed);
@@ -225,7 +219,6 @@ std::unique_ptr<BenchMesh> MakeBenchMesh(const std::string &name,
         bm->prims.push_back(std::make_shared<GeometricPrimitive>(s));
     return bm;
 }
-// BVH Benchmark Input Functions
 RaySet ReadRays(const std::string &filename) {
     std::ifstream in(filename, std::ios::binary | std::ios::ate);
     if (!in) throw std::runtime_error(filename + ": cannot open");
@@ -266,7 +259,6 @@ TraceResult TracePass(const Primitive &accel, const RaySet &rays) {
     }
     return r;
 }
-// BVH Benchmark Measurement Functions
 template <typename Accel>
 using AccelSlot = std::shared_ptr<std::unique_ptr<Accel>>;
 
@@ -292,7 +284,6 @@ void RegisterBuild(const std::string &name, AccelSlot<Accel> slot, Make make,
         ->Iterations(1)
         ->Unit(benchmark::kMillisecond);
 }
-// BVH Benchmark Measurement Functions
 template <typename Accel>
 void RegisterTrace(const std::string &name, AccelSlot<Accel> slot,
                    const RaySet &rays) {
@@ -313,7 +304,6 @@ void RegisterTrace(const std::string &name, AccelSlot<Accel> slot,
         ->Iterations(1)
         ->Unit(benchmark::kMillisecond);
 }
-// BVH Benchmark Measurement Functions
 const char *MethodName(SplitMethod m) { return BVHAccel::SplitMethodName(m); }
 
 std::string BenchName(const BenchMesh &mesh, SplitMethod method,
@@ -326,7 +316,6 @@ const char roundTag[] = "/round:";
 std::string RoundName(const std::string &name, int round) {
     return name + roundTag + std::to_string(round + 1);
 }
-// BVH Benchmark Measurement Functions
 void RunGroup(const BenchMesh &mesh, SplitMethod method,
               const std::vector<RaySet> &raySets, const BenchOptions &opt,
               benchmark::BenchmarkReporter *reporter) {
@@ -473,7 +462,6 @@ std::string JSONString(const std::string &s) {
     }
     return quoted + '"';
 }
-// BVH Benchmark Output Functions
 const char *ReferenceCheck(const std::string &mesh, const std::string &rays,
                            double hits) {
     if (mesh.compare(0, 7, "bunny_L") != 0 || mesh == "bunny_L0") return "";
@@ -483,7 +471,6 @@ const char *ReferenceCheck(const std::string &mesh, const std::string &rays,
         return hits == 641888 || hits == 641889 ? "ok" : "MISMATCH";
     return "";
 }
-// BVH Benchmark Output Functions
 void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
                   const std::vector<RaySet> &raySets,
                   const BenchOptions &opt, const BenchReporter &rep) {
@@ -541,7 +528,6 @@ void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
         }
     }
 }
-// BVH Benchmark Output Functions
 void WriteJSON(const std::string &filename,
                const std::vector<std::unique_ptr<BenchMesh>> &meshes,
                const std::vector<RaySet> &raySets, const BenchOptions &opt,

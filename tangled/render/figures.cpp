@@ -44,7 +44,6 @@ void AddDisk(RenderScene *scene, const Transform &objectToWorld,
                                            innerRadius, phiMax),
                     albedo);
 }
-// Figure Program Helpers
 std::string dataDir = "data";
 
 std::vector<std::shared_ptr<Primitive>> BunnyPrimitives(
@@ -60,7 +59,6 @@ std::vector<std::shared_ptr<Primitive>> BunnyPrimitives(
         prims.push_back(std::make_shared<GeometricPrimitive>(s));
     return prims;
 }
-// Figure Program Helpers
 Image Tile(const std::vector<Image> &panels, int columns, int gap = 20) {
     int w = panels[0].Width(), h = panels[0].Height();
     int rows = (int(panels.size()) + columns - 1) / columns;
@@ -90,7 +88,6 @@ RenderOptions TwoLights(Float headlight, const Point3f &pLight, Float I) {
     options.lights.push_back({pLight, RGB(I, I, I)});
     return options;
 }
-// Figure Scenes
 Image PartialSpheres() {
     RenderScene scene;
     AddDisk(&scene, Transform(), 0, 14, 0, 360, kFloor);
@@ -109,7 +106,6 @@ Image PartialSpheres() {
                                         22, 1872, 728);
     return Render(scene, camera, TwoLights(5, Point3f(7, -5, 11), 12));
 }
-// Figure Scenes
 Image Disks() {
     RenderScene scene;
     AddDisk(&scene, Transform(), 0, 14, 0, 360, kFloor);
@@ -122,7 +118,6 @@ Image Disks() {
                                         28, 1512, 810);
     return Render(scene, camera, TwoLights(3.5, Point3f(5, -4, 9), 8));
 }
-// Figure Scenes
 Image Bunny() {
     RenderScene scene;
     AddDisk(&scene, Transform(), 0, 80, 0, 360, kFloor);
@@ -132,7 +127,6 @@ Image Bunny() {
                                         Point3f(0, 0, 4.3), 25, 1152, 960);
     return Render(scene, camera, TwoLights(14, Point3f(14, -18, 26), 30));
 }
-// Figure Scenes
 const Point3f kRowEye(0, 0, 4.5);
 
 void AddSphereRow(RenderScene *scene) {
@@ -165,7 +159,6 @@ Image FalloffComparison() {
     }
     return Tile(panels, 3);
 }
-// Figure Scenes
 Image Clipping() {
     RenderScene scene;
     AddSphereRow(&scene);
@@ -177,7 +170,6 @@ Image Clipping() {
                  Render(scene, RowCamera(936, 702, zNear, zFar), options)},
                 2);
 }
-// Figure Scenes
 Image BiasPanel(Float s, ShadowRays shadowRays) {
     RenderScene scene;
     AddDisk(&scene, Transform(), 0, 8 * s, 0, 360, kFloor);
@@ -202,7 +194,6 @@ Image ShadowBias() {
             panels.push_back(BiasPanel(s, r));
     return Tile(panels, 2);
 }
-// Figure Scenes
 Image HeatMaps() {
     RenderScene scene;
     auto prims = BunnyPrimitives(&scene);

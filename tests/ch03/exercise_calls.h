@@ -15,7 +15,7 @@
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/disk.h"
 #include "lrt/shapes/triangle.h"
-#include "lrt/core/plyreader.h"
+#include "lrt/shapes/plyreader.h"
 #include "calls/calls.h"
 #include "calls/memory_files.h"
 

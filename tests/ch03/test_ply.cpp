@@ -9,7 +9,7 @@
 // tests hand the files' bytes to the exercise calls of exercise_calls.h,
 // which write and read them.
 
-#include "lrt/core/plyreader.h"
+#include "lrt/shapes/plyreader.h"
 #include "lrt/shapes/triangle.h"
 
 #include "exercise_calls.h"

@@ -8,7 +8,7 @@
 
 #include "remote_bvh.h"
 #include "lrt/accelerators/bvh.h"
-#include "lrt/core/plyreader.h"
+#include "lrt/shapes/plyreader.h"
 
 #include <gtest/gtest.h>
 

@@ -151,6 +151,46 @@ class TangleTest(unittest.TestCase):
         self.assertEqual(os.stat(os.path.join(out, 'lrt', 'good.h')).st_mode & 0o777,
                          0o644)
 
+    def test_fragment_is_named_once_per_expansion(self):
+        # A fragment defined in three pieces and used once is named once, at
+        # its first piece; one used in two places is named at each.
+        chapter = os.path.join(self.tmp, '02-pieces.md')
+
+        def chunk(name, *code):
+            return '```cpp\n<<%s>>=\n%s\n@\n```\n\nText.\n\n' % (name, '\n'.join(code))
+        with open(chapter, 'w') as f:
+            f.write('# Pieces\n\n' +
+                    chunk('lrt/pieces.h', '<<Constants>>', 'int f() {',
+                          '    <<Return one>>', '}', 'int g() {',
+                          '    <<Return one>>', '}') +
+                    chunk('Constants', 'const int a = 1;') +
+                    chunk('Return one', 'return 1;') +
+                    chunk('Constants', 'const int b = 2;') +
+                    chunk('Constants', 'const int c = 3;'))
+        out = os.path.join(self.tmp, 'tangled')
+        result = self.tangle('--out', out, chapter)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(os.path.join(out, 'lrt', 'pieces.h')) as f:
+            text = f.read()
+        self.assertEqual(text.count('// Constants'), 1, text)
+        self.assertIn('// Constants\nconst int a = 1;\nconst int b = 2;\n'
+                      'const int c = 3;\n', text)
+        self.assertEqual(text.count('    // Return one\n    return 1;\n'), 2, text)
+
+        # The compiler's tangle has no comments, and a #line directive before
+        # every piece, each pointing at that piece's own line.
+        lines = os.path.join(self.tmp, 'lines')
+        result = self.tangle('--line-directives', '--out', lines, chapter)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(os.path.join(lines, 'lrt', 'pieces.h')) as f:
+            text = f.read()
+        self.assertNotIn('// ', text)
+        with open(chapter) as f:
+            source = f.read().split('\n')
+        for code in ('const int a = 1;', 'const int b = 2;', 'const int c = 3;'):
+            line = source.index(code) + 1
+            self.assertIn('#line %d "%s"\n%s\n' % (line, chapter, code), text)
+
     def test_unchanged_files_keep_their_time(self):
         # make rebuilds what a tangle touched: a file whose text is the same
         # must not be written again, one whose text changed must be.

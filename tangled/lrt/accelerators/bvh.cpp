@@ -21,7 +21,6 @@ struct BVHPrimitiveInfo {
     Bounds3f bounds;
     Point3f centroid;
 };
-// BVHAccel Local Declarations
 struct BVHBuildNode {
     void InitLeaf(int first, int n, const Bounds3f &b) {
         firstPrimOffset = first;
@@ -40,7 +39,6 @@ struct BVHBuildNode {
     BVHBuildNode *children[2];
     int splitAxis = 0, firstPrimOffset = 0, nPrimitives = 0;
 };
-// BVHAccel Local Declarations
 struct BVHBuildArena {
     BVHBuildNode *Alloc() {
         nodes.emplace_back();
@@ -48,12 +46,10 @@ struct BVHBuildArena {
     }
     std::deque<BVHBuildNode> nodes;
 };
-// BVHAccel Local Declarations
 struct MortonPrimitive {
     int primitiveIndex;
     uint32_t mortonCode;
 };
-// BVHAccel Local Declarations
 struct LBVHTreelet {
     int startIndex, nPrimitives;
     BVHBuildNode *root;
@@ -66,7 +62,6 @@ static int BucketIndex(const Bounds3f &centroidBounds, const Point3f &c,
     if (f >= nBuckets) return nBuckets - 1;
     return int(f);
 }
-// BVHAccel Utility Functions
 static void RadixSort(std::vector<MortonPrimitive> *v) {
     std::vector<MortonPrimitive> tempVector(v->size());
     constexpr int bitsPerPass = 6;
@@ -142,7 +137,6 @@ BVHAccel::BVHAccel(std::vector<std::shared_ptr<Primitive>> p,
 }
 
 BVHAccel::~BVHAccel() {}
-// BVHAccel Method Definitions
 BVHBuildNode *BVHAccel::recursiveBuild(
     BVHBuildArena &arena, std::vector<BVHPrimitiveInfo> &primitiveInfo,
     int start, int end, int depth, int *totalNodes,
@@ -296,7 +290,6 @@ BVHBuildNode *BVHAccel::recursiveBuild(
     node->InitInterior(dim, c0, c1);
     return node;
 }
-// BVHAccel Method Definitions
 BVHBuildNode *BVHAccel::HLBVHBuild(
     BVHBuildArena &arena,
     const std::vector<BVHPrimitiveInfo> &primitiveInfo, int *totalNodes,
@@ -344,7 +337,6 @@ BVHBuildNode *BVHAccel::HLBVHBuild(
                          int(finishedTreelets.size()), 0, treeletDepth,
                          totalNodes);
 }
-// BVHAccel Method Definitions
 BVHBuildNode *BVHAccel::emitLBVH(
     BVHBuildArena &arena,
     const std::vector<BVHPrimitiveInfo> &primitiveInfo,
@@ -401,7 +393,6 @@ BVHBuildNode *BVHAccel::emitLBVH(
     node->InitInterior(axis, c0, c1);
     return node;
 }
-// BVHAccel Method Definitions
 BVHBuildNode *BVHAccel::buildUpperSAH(
     BVHBuildArena &arena, std::vector<BVHBuildNode *> &treeletRoots,
     int start, int end, int depth, int treeletDepth,
@@ -484,7 +475,6 @@ BVHBuildNode *BVHAccel::buildUpperSAH(
                       treeletDepth, totalNodes));
     return node;
 }
-// BVHAccel Method Definitions
 int BVHAccel::flattenBVHTree(const BVHBuildNode *node, int *offset) {
     LinearBVHNode *linearNode = &nodes[*offset];
     linearNode->bounds = node->bounds;
@@ -502,11 +492,9 @@ int BVHAccel::flattenBVHTree(const BVHBuildNode *node, int *offset) {
     }
     return myOffset;
 }
-// BVHAccel Method Definitions
 Bounds3f BVHAccel::WorldBound() const {
     return nodes.empty() ? Bounds3f() : nodes[0].bounds;
 }
-// BVHAccel Method Definitions
 bool BVHAccel::Intersect(const Ray &ray, SurfaceInteraction *isect) const {
     if (nodes.empty()) return false;
     bool hit = false;
@@ -542,7 +530,6 @@ bool BVHAccel::Intersect(const Ray &ray, SurfaceInteraction *isect) const {
     }
     return hit;
 }
-// BVHAccel Method Definitions
 bool BVHAccel::IntersectP(const Ray &ray) const {
     if (nodes.empty()) return false;
     Vector3f invDir(1 / ray.d.x, 1 / ray.d.y, 1 / ray.d.z);
@@ -576,7 +563,6 @@ bool BVHAccel::IntersectP(const Ray &ray) const {
     }
     return false;
 }
-// BVHAccel Method Definitions
 BVHStats BVHAccel::Stats() const {
     BVHStats s;
     if (nodes.empty()) return s;

@@ -23,13 +23,11 @@ inline bool IsFiniteBox(const Bounds3f &b) {
             return false;
     return true;
 }
-// BVH Constants and Inline Functions
 constexpr int maxBVHDepth = 64;
 
 inline int CeilLog2(int64_t n) {
     return n <= 1 ? 0 : Log2Int(int64_t(n - 1)) + 1;
 }
-// BVH Constants and Inline Functions
 inline uint32_t LeftShift3(uint32_t x) {
     if (x > 1023) x = 1023;
     // Spread the ten bits of x apart
@@ -39,7 +37,6 @@ inline uint32_t LeftShift3(uint32_t x) {
     x = (x | (x << 2)) & 0x09249249;   // 9..8..7..6..5..4..3..2..1..0
     return x;
 }
-// BVH Constants and Inline Functions
 inline uint32_t QuantizeMorton(Float v) {
     if (!(v > 0)) return 0;
     if (v >= 1023) return 1023;
@@ -92,7 +89,6 @@ class BVHAccel : public Aggregate {
   public:
     // BVHAccel Public Types
     enum class SplitMethod { SAH, HLBVH, Middle, EqualCounts };
-    // BVHAccel Public Types
     static const char *SplitMethodName(SplitMethod m) {
         switch (m) {
         case SplitMethod::SAH: return "SAH";
@@ -109,7 +105,6 @@ class BVHAccel : public Aggregate {
     Bounds3f WorldBound() const override;
     bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override;
     bool IntersectP(const Ray &ray) const override;
-    // BVHAccel Public Methods
     const std::vector<LinearBVHNode> &Nodes() const { return nodes; }
     const std::vector<std::shared_ptr<Primitive>> &Primitives() const {
         return primitives;
@@ -123,24 +118,20 @@ class BVHAccel : public Aggregate {
         BVHBuildArena &arena, std::vector<BVHPrimitiveInfo> &primitiveInfo,
         int start, int end, int depth, int *totalNodes,
         std::vector<std::shared_ptr<Primitive>> &orderedPrims) const;
-    // BVHAccel Private Methods
     BVHBuildNode *HLBVHBuild(
         BVHBuildArena &arena,
         const std::vector<BVHPrimitiveInfo> &primitiveInfo, int *totalNodes,
         std::vector<std::shared_ptr<Primitive>> &orderedPrims) const;
-    // BVHAccel Private Methods
     BVHBuildNode *emitLBVH(
         BVHBuildArena &arena,
         const std::vector<BVHPrimitiveInfo> &primitiveInfo,
         MortonPrimitive *mortonPrims, int nPrimitives, int bitIndex,
         int depth, int *maxDepth, int *totalNodes,
         std::vector<std::shared_ptr<Primitive>> &orderedPrims) const;
-    // BVHAccel Private Methods
     BVHBuildNode *buildUpperSAH(BVHBuildArena &arena,
                                 std::vector<BVHBuildNode *> &treeletRoots,
                                 int start, int end, int depth,
                                 int treeletDepth, int *totalNodes) const;
-    // BVHAccel Private Methods
     int flattenBVHTree(const BVHBuildNode *node, int *offset);
     // BVHAccel Private Data
     const int maxPrimsInNode;

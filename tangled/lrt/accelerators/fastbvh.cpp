@@ -1,65 +1,20 @@
 // lrt/accelerators/fastbvh.cpp: tangled from chapters/07-fast-bvh.md. Edit the chapter, not this file.
 #include "lrt/accelerators/fastbvh.h"
+#include "lrt/core/platform.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <limits>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <typeinfo>
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace lrt {
 
-// Large Array Definitions
-constexpr size_t largePageSize = size_t(2) << 20;
-constexpr size_t largePageThreshold = 4 * largePageSize;
-
-void *AllocateLargeArray(size_t bytes, size_t alignment) {
-#if defined(__linux__)
-    if (bytes >= largePageThreshold) {
-        if (bytes > size_t(-1) - largePageSize) throw std::bad_alloc();
-        size_t rounded = (bytes + largePageSize - 1) / largePageSize *
-                         largePageSize;
-        void *p = std::aligned_alloc(largePageSize, rounded);
-        if (!p) throw std::bad_alloc();
-        (void)madvise(p, rounded, MADV_HUGEPAGE);
-        return p;
-    }
-#endif
-    return ::operator new(bytes, std::align_val_t(alignment));
-}
-
-void FreeLargeArray(void *p, size_t bytes, size_t alignment) {
-#if defined(__linux__)
-    if (bytes >= largePageThreshold) {
-        std::free(p);
-        return;
-    }
-#endif
-    ::operator delete(p, std::align_val_t(alignment));
-}
 // Triangle Utility Functions
 static inline Float MaxAbs(Float a, Float b, Float c) {
     return std::max(std::abs(a), std::max(std::abs(b), std::abs(c)));
 }
-// Define the LRT_PREFETCH macro
-#if defined(__GNUC__) || defined(__clang__)
-#define LRT_PREFETCH(address) __builtin_prefetch(address)
-#else
-#define LRT_PREFETCH(address) ((void)(address))
-#endif
-// Define the LRT_ALWAYS_INLINE macro
-#if defined(__GNUC__) || defined(__clang__)
-#define LRT_ALWAYS_INLINE inline __attribute__((always_inline))
-#define LRT_ALWAYS_INLINE_LAMBDA __attribute__((always_inline))
-#else
-#define LRT_ALWAYS_INLINE inline
-#define LRT_ALWAYS_INLINE_LAMBDA
-#endif
 // FastBVHAccel Local Declarations
 struct FastBVHBuildPrim {
     Float lo[4], hi[4];
@@ -70,7 +25,6 @@ struct FastBVHBuildPrim {
         return lo[dim] * Float(0.5) + hi[dim] * Float(0.5);
     }
 };
-// FastBVHAccel Local Declarations
 struct FastBox {
     Float lo[4], hi[4];
     static FastBox Empty() {
@@ -92,7 +46,6 @@ struct FastBox {
         return (dx > dy && dx > dz) ? 0 : (dy > dz ? 1 : 2);
     }
 };
-// FastBVHAccel Local Declarations
 class SAHBinaryTree {
   public:
     struct Node {
@@ -124,7 +77,6 @@ class SAHBinaryTree {
     std::vector<FastBVHBuildPrim> &prims;
     int maxPrimsInNode;
 };
-// FastBVHAccel Local Declarations
 constexpr int fastBVHBins = 16;
 constexpr Float fastBVHTraversalCost = 3;
 constexpr Float fastBVHIntersectionCost = 1;
@@ -133,7 +85,6 @@ struct FastBVHBin {
     FastBox box;
     int count;
 };
-// FastBVHAccel Local Declarations
 struct FastRay {
     explicit FastRay(const Ray &ray) {
         ox = ray.o.x;
@@ -173,11 +124,9 @@ struct FastRay {
     int kx, ky, kz;
     Float Sx, Sy, Sz;
 };
-// FastBVHAccel Local Declarations
 struct FastTriangleHit {
     Float t, e0, e1, e2, invDet;
 };
-// FastBVHAccel Local Declarations
 constexpr int8_t lowestSetBit[16] = {0, 0, 1, 0, 2, 0, 1, 0,
                                      3, 0, 1, 0, 2, 0, 1, 0};
 // FastBVHAccel Utility Functions
@@ -197,7 +146,6 @@ static Bounds3f GetChildBox(const FastBVHNode &node, int c) {
                      node.bounds[2][1][c]);
     return b;
 }
-// FastBVHAccel Utility Functions
 static bool PassesDegenerateTest(const Point3f &p0, const Point3f &p1,
                                  const Point3f &p2) {
     // Reject degenerate triangles
@@ -237,14 +185,12 @@ static bool StoreTriangle(FastTriangle *ft, FastTriangleInfo *info,
     }
     return true;
 }
-// FastBVHAccel Utility Functions
 static inline int BinIndex(Float c, Float cMin, Float scale, int nBins) {
     Float f = (c - cMin) * scale;
     if (!(f > 0)) return 0;
     if (f >= nBins) return nBins - 1;
     return int(f);
 }
-// FastBVHAccel Utility Functions
 static FastBox ToFastBox(const Bounds3f &b) {
     return {{b.pMin.x, b.pMin.y, b.pMin.z, b.pMin.z},
             {b.pMax.x, b.pMax.y, b.pMax.z, b.pMax.z}};
@@ -262,7 +208,6 @@ static const FastBVHNode &EmptyNode() {
     }();
     return emptyNode;
 }
-// FastBVHAccel Utility Functions
 template <typename BinaryTree>
 static FastBVHChild BuildWide(BinaryTree &tree,
                               const typename BinaryTree::Node &node,
@@ -301,7 +246,6 @@ static FastBVHChild BuildWide(BinaryTree &tree,
     }
     return {uint32_t(nodeIndex), fastBVHInterior, 0};
 }
-// FastBVHAccel Utility Functions
 class AdoptedBinaryTree {
   public:
     struct Node {
@@ -332,7 +276,6 @@ class AdoptedBinaryTree {
     LargeArray<FastTriangleInfo> &triangleInfo;
     std::vector<int> others;
 };
-// FastBVHAccel Utility Functions
 static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
                                                 const FastRay &fr,
                                                 const Ray &ray,
@@ -436,7 +379,6 @@ static LRT_ALWAYS_INLINE bool IntersectTriangle(const FastTriangle &tri,
     *hit = {t, e0, e1, e2, invDet};
     return true;
 }
-// FastBVHAccel Utility Functions
 static void DefaultUVDerivatives(const Vector3f &dp02, const Vector3f &dp12,
                                  Vector3f *dpdu, Vector3f *dpdv) {
     Point2f uv[3];
@@ -720,7 +662,6 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
         current = stack[stackSize].child;
     }
 }
-// FastBVHAccel Traversal Function
 template <typename LeafVisitor>
 static void TraverseFastBVH(const FastBVHNode *nodes,
                             const FastTriangle *triangles,
@@ -789,7 +730,6 @@ FastBVHAccel::FastBVHAccel(std::vector<std::shared_ptr<Primitive>> p,
         primitives.push_back(std::move(p[bp.index]));
     }
 }
-// FastBVHAccel Method Definitions
 void SAHBinaryTree::MakeNode(Node *node, int start, int end,
                              const FastBox &box, int depth) {
     *node = {box, start, end, depth, -1,
@@ -870,7 +810,6 @@ void SAHBinaryTree::MakeNode(Node *node, int start, int end,
             node->childBox[i < node->mid ? 0 : 1].Grow(prims[i].lo, prims[i].hi);
     }
 }
-// FastBVHAccel Method Definitions
 void SAHBinaryTree::MakeLeaf(Node *node) {
     auto first = prims.begin() + node->start, last = prims.begin() + node->end;
     auto firstOther = std::partition(
@@ -879,18 +818,15 @@ void SAHBinaryTree::MakeLeaf(Node *node) {
     node->leaf = {uint32_t(node->start), uint16_t(nTriangles),
                   uint16_t(node->end - node->start - nTriangles)};
 }
-// FastBVHAccel Method Definitions
 void FastBVHAccel::SetRoot(const FastBox &box, FastBVHChild child) {
     rootNode = EmptyNode();
     SetChildBox(&rootNode, 0, box.lo, box.hi);
     root = child;
 }
-// FastBVHAccel Method Definitions
 FastBVHAccel::FastBVHAccel(const BVHAccel &bvh)
     : maxPrimsInNode(bvh.MaxPrimsInNode()) {
     CopyTree(bvh);
 }
-// FastBVHAccel Method Definitions
 FastBVHChild AdoptedBinaryTree::Leaf(const Node &node) {
     const LinearBVHNode &bvhNode = bvh.Nodes()[node.index];
     const std::shared_ptr<Primitive> *prims =
@@ -918,7 +854,6 @@ FastBVHChild AdoptedBinaryTree::Leaf(const Node &node) {
     }
     return leaf;
 }
-// FastBVHAccel Method Definitions
 void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
     if (bvh.Nodes().empty()) return;
     size_t n = bvh.Primitives().size();
@@ -931,7 +866,6 @@ void FastBVHAccel::CopyTree(const BVHAccel &bvh) {
     SetRoot(ToFastBox(bvh.Nodes()[0].bounds),
             BuildWide(binary, binaryRoot, &nodes));
 }
-// FastBVHAccel Method Definitions
 bool FastBVHAccel::Intersect(const Ray &ray,
                              SurfaceInteraction *isect) const {
     if (primitives.empty()) return false;
@@ -982,7 +916,6 @@ bool FastBVHAccel::Intersect(const Ray &ray,
     }
     return hitOther || hitTriangle >= 0;
 }
-// FastBVHAccel Method Definitions
 bool FastBVHAccel::IntersectP(const Ray &ray) const {
     if (primitives.empty()) return false;
     FastRay fr(ray);
@@ -1003,12 +936,10 @@ bool FastBVHAccel::IntersectP(const Ray &ray) const {
     });
     return hit;
 }
-// FastBVHAccel Method Definitions
 Bounds3f FastBVHAccel::WorldBound() const {
     if (primitives.empty()) return Bounds3f();
     return GetChildBox(rootNode, 0);
 }
-// FastBVHAccel Method Definitions
 BVHStats FastBVHAccel::Stats() const {
     BVHStats s;
     if (primitives.empty()) return s;

@@ -4,13 +4,13 @@
 #include "lrt/accelerators/bvh.h"
 #include "lrt/core/base.h"
 #include "lrt/core/geometry.h"
+#include "lrt/core/platform.h"
 #include "lrt/core/primitive.h"
 #include "lrt/shapes/triangle.h"
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
-#include <new>
 #include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -18,31 +18,6 @@
 
 namespace lrt {
 
-// Large Array Declarations
-void *AllocateLargeArray(size_t bytes, size_t alignment);
-void FreeLargeArray(void *p, size_t bytes, size_t alignment);
-
-template <typename T>
-struct LargeArrayAllocator {
-    using value_type = T;
-    LargeArrayAllocator() = default;
-    template <typename U>
-    LargeArrayAllocator(const LargeArrayAllocator<U> &) {}
-    T *allocate(size_t n) {
-        if (n > size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
-        return static_cast<T *>(AllocateLargeArray(n * sizeof(T), alignof(T)));
-    }
-    void deallocate(T *p, size_t n) {
-        FreeLargeArray(p, n * sizeof(T), alignof(T));
-    }
-    template <typename U>
-    bool operator==(const LargeArrayAllocator<U> &) const { return true; }
-    template <typename U>
-    bool operator!=(const LargeArrayAllocator<U> &) const { return false; }
-};
-
-template <typename T>
-using LargeArray = std::vector<T, LargeArrayAllocator<T>>;
 struct FastBox;
 // FastBVHAccel Node Types
 constexpr int fastBVHWidth = 4;
@@ -62,12 +37,10 @@ struct alignas(64) FastBVHNode {
 };
 static_assert(sizeof(FastBVHNode) == (sizeof(Float) == 4 ? 128 : 256),
               "FastBVHNode should fill two cache lines");
-// FastBVHAccel Node Types
 struct alignas(16) FastTriangle {
     Float c[3][4];  // c[axis][vertex]; c[axis][3] is zero
     Point3f Vertex(int i) const { return Point3f(c[0][i], c[1][i], c[2][i]); }
 };
-// FastBVHAccel Node Types
 struct FastTriangleInfo {
     const Triangle *triangle;
     int faceIndex;
@@ -106,7 +79,6 @@ class FastBVHAccel : public Aggregate {
     Bounds3f WorldBound() const override;
     bool Intersect(const Ray &ray, SurfaceInteraction *isect) const override;
     bool IntersectP(const Ray &ray) const override;
-    // FastBVHAccel Public Methods
     const LargeArray<FastBVHNode> &Nodes() const { return nodes; }
     FastBVHChild Root() const { return root; }
     const std::vector<std::shared_ptr<Primitive>> &Primitives() const {
@@ -118,7 +90,6 @@ class FastBVHAccel : public Aggregate {
   private:
     // FastBVHAccel Private Methods
     void SetRoot(const FastBox &box, FastBVHChild child);
-    // FastBVHAccel Private Methods
     void CopyTree(const BVHAccel &bvh);
     // FastBVHAccel Private Data
     int maxPrimsInNode;

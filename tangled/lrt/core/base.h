@@ -27,12 +27,9 @@ typedef float Float;
 // Global Constants
 inline constexpr Float MaxFloat = std::numeric_limits<Float>::max();
 inline constexpr Float Infinity = std::numeric_limits<Float>::infinity();
-// Global Constants
 inline constexpr Float MachineEpsilon =
     std::numeric_limits<Float>::epsilon() * Float(0.5);
-// Global Constants
 inline constexpr Float ShadowEpsilon = 0.0001f;
-// Global Constants
 inline constexpr Float Pi = 3.14159265358979323846;
 inline constexpr Float InvPi = 0.31830988618379067154;
 inline constexpr Float Inv2Pi = 0.15915494309189533577;
@@ -44,7 +41,6 @@ inline constexpr Float Sqrt2 = 1.41421356237309504880;
 inline constexpr Float gamma(int n) {
     return (n * MachineEpsilon) / (1 - n * MachineEpsilon);
 }
-// Global Inline Functions
 inline uint32_t FloatToBits(float f) {
     uint32_t ui;
     std::memcpy(&ui, &f, sizeof(float));
@@ -68,7 +64,6 @@ inline double BitsToFloat(uint64_t ui) {
     std::memcpy(&f, &ui, sizeof(uint64_t));
     return f;
 }
-// Global Inline Functions
 inline float NextFloatUp(float v) {
     if (std::isnan(v) || (std::isinf(v) && v > 0)) return v;
     if (v == -0.f) v = 0.f;
@@ -79,7 +74,6 @@ inline float NextFloatUp(float v) {
         --ui;
     return BitsToFloat(ui);
 }
-// Global Inline Functions
 inline float NextFloatDown(float v) {
     if (std::isnan(v) || (std::isinf(v) && v < 0)) return v;
     if (v == 0.f) v = -0.f;
@@ -90,7 +84,6 @@ inline float NextFloatDown(float v) {
         ++ui;
     return BitsToFloat(ui);
 }
-// Global Inline Functions
 inline double NextFloatUp(double v) {
     if (std::isnan(v) || (std::isinf(v) && v > 0)) return v;
     if (v == -0.0) v = 0.0;
@@ -112,21 +105,17 @@ inline double NextFloatDown(double v) {
         ++ui;
     return BitsToFloat(ui);
 }
-// Global Inline Functions
 inline Float Lerp(Float t, Float v1, Float v2) {
     return (1 - t) * v1 + t * v2;
 }
-// Global Inline Functions
 template <typename T, typename U, typename V>
 inline T Clamp(T val, U low, V high) {
     if (val < low) return T(low);
     if (val > high) return T(high);
     return val;
 }
-// Global Inline Functions
 inline Float Radians(Float deg) { return (Pi / 180) * deg; }
 inline Float Degrees(Float rad) { return (180 / Pi) * rad; }
-// Global Inline Functions
 template <typename T>
 inline T Mod(T a, T b) {
     if (!(b > 0)) throw std::domain_error("Mod: modulus must be positive");
@@ -139,12 +128,10 @@ inline T Mod(T a, T b) {
         return (r < 0) ? r + b : r;
     }
 }
-// Global Inline Functions
 template <typename T>
 inline constexpr bool IsPowerOf2(T v) {
     return v > 0 && (v & (v - 1)) == 0;
 }
-// Global Inline Functions
 inline int Log2Int(uint32_t v) {
     if (v == 0) throw std::domain_error("Log2Int: argument must be positive");
     return 31 - __builtin_clz(v);
@@ -164,7 +151,6 @@ inline int Log2Int(int64_t v) {
     if (v <= 0) throw std::domain_error("Log2Int: argument must be positive");
     return Log2Int(uint64_t(v));
 }
-// Global Inline Functions
 template <typename T>
 inline T DifferenceOfProducts(T a, T b, T c, T d) {
     T cd = c * d;
@@ -172,7 +158,6 @@ inline T DifferenceOfProducts(T a, T b, T c, T d) {
     T dop = std::fma(a, b, -cd);
     return dop + err;
 }
-// Global Inline Functions
 inline bool Quadratic(Float a, Float b, Float c, Float *t0, Float *t1) {
     // Handle the linear case of Quadratic()
     if (a == 0) {

@@ -25,13 +25,11 @@ class EFloat {
         }
         SetPrecise(v);
     }
-    // EFloat Public Methods
     #ifdef LRT_EFLOAT_PRECISE
     EFloat(Float v, long double precise, Float err) : EFloat(v, err) {
         SetPrecise(precise);
     }
     #endif
-    // EFloat Public Methods
     void Check() const {
         if (low > high)
             throw std::logic_error("EFloat::Check: inverted interval");
@@ -40,7 +38,6 @@ class EFloat {
             throw std::logic_error("EFloat::Check: precise value outside bounds");
     #endif
     }
-    // EFloat Public Methods
     explicit operator float() const { return v; }
     explicit operator double() const { return v; }
     Float LowerBound() const { return low; }
@@ -63,7 +60,6 @@ class EFloat {
         Check();
     #endif
     }
-    // EFloat Private Methods
     void SetBounds(const Float c[4]) {
         for (int i = 0; i < 4; ++i)
             if (std::isnan(c[i])) {
@@ -88,7 +84,6 @@ class EFloat {
         r.SetPrecise(a.PreciseValue() + b.PreciseValue());
         return r;
     }
-    // EFloat Friends
     friend EFloat operator-(EFloat a, EFloat b) {
         EFloat r;
         r.v = a.v - b.v;
@@ -106,7 +101,6 @@ class EFloat {
         r.SetPrecise(-a.PreciseValue());
         return r;
     }
-    // EFloat Friends
     friend EFloat operator*(EFloat a, EFloat b) {
         EFloat r;
         r.v = a.v * b.v;
@@ -116,7 +110,6 @@ class EFloat {
         r.SetPrecise(a.PreciseValue() * b.PreciseValue());
         return r;
     }
-    // EFloat Friends
     friend EFloat operator/(EFloat a, EFloat b) {
         EFloat r;
         r.v = a.v / b.v;
@@ -131,7 +124,6 @@ class EFloat {
         r.SetPrecise(a.PreciseValue() / b.PreciseValue());
         return r;
     }
-    // EFloat Friends
     friend EFloat sqrt(EFloat a) {
         EFloat r;
         r.v = std::sqrt(a.v);
@@ -151,7 +143,6 @@ class EFloat {
         r.SetPrecise(std::abs(a.PreciseValue()));
         return r;
     }
-    // EFloat Friends
     friend bool Quadratic(EFloat a, EFloat b, EFloat c, EFloat *t0, EFloat *t1);
     friend bool QuadraticRoots(EFloat a, EFloat b, EFloat c, EFloat discrim,
                                EFloat *t0, EFloat *t1);

@@ -31,7 +31,6 @@ class Vector3 {
     bool HasNaNs() const {
         return std::isnan(x) || std::isnan(y) || std::isnan(z);
     }
-    // Vector3 Public Methods
     T operator[](int i) const {
         if (i == 0) return x;
         if (i == 1) return y;
@@ -44,7 +43,6 @@ class Vector3 {
         if (i == 2) return z;
         throw std::out_of_range("Vector3::operator[]: index out of range");
     }
-    // Vector3 Public Methods
     Vector3<T> operator+(const Vector3<T> &v) const {
         return Vector3<T>(x + v.x, y + v.y, z + v.z);
     }
@@ -63,12 +61,10 @@ class Vector3 {
         z -= v.z;
         return *this;
     }
-    // Vector3 Public Methods
     bool operator==(const Vector3<T> &v) const {
         return x == v.x && y == v.y && z == v.z;
     }
     bool operator!=(const Vector3<T> &v) const { return !(*this == v); }
-    // Vector3 Public Methods
     template <typename U>
     Vector3<T> operator*(U s) const {
         return Vector3<T>(s * x, s * y, s * z);
@@ -81,7 +77,6 @@ class Vector3 {
         return *this;
     }
     Vector3<T> operator-() const { return Vector3<T>(-x, -y, -z); }
-    // Vector3 Public Methods
     template <typename U>
     Vector3<T> operator/(U f) const {
         Float inv = Float(1) / f;
@@ -95,12 +90,9 @@ class Vector3 {
         z *= inv;
         return *this;
     }
-    // Vector3 Public Methods
     Float LengthSquared() const { return x * x + y * y + z * z; }
     Float Length() const { return std::sqrt(LengthSquared()); }
-    // Vector3 Public Methods
     explicit Vector3(const Point3<T> &p) : x(p.x), y(p.y), z(p.z) {}
-    // Vector3 Public Methods
     explicit Vector3(const Normal3<T> &n) : x(n.x), y(n.y), z(n.z) {}
     // Vector3 Public Data
     T x, y, z;
@@ -108,7 +100,6 @@ class Vector3 {
 
 typedef Vector3<Float> Vector3f;
 typedef Vector3<int> Vector3i;
-// Vector Declarations
 template <typename T>
 class Vector2 {
   public:
@@ -126,7 +117,6 @@ class Vector2 {
         if (i == 1) return y;
         throw std::out_of_range("Vector2::operator[]: index out of range");
     }
-    // Vector2 Public Methods
     Vector2<T> operator+(const Vector2<T> &v) const {
         return Vector2<T>(x + v.x, y + v.y);
     }
@@ -170,7 +160,6 @@ class Vector2 {
     Vector2<T> operator-() const { return Vector2<T>(-x, -y); }
     Float LengthSquared() const { return x * x + y * y; }
     Float Length() const { return std::sqrt(LengthSquared()); }
-    // Vector2 Public Methods
     explicit Vector2(const Point2<T> &p) : x(p.x), y(p.y) {}
     explicit Vector2(const Point3<T> &p) : x(p.x), y(p.y) {}
     T x, y;
@@ -204,17 +193,14 @@ class Point3 {
         return x == p.x && y == p.y && z == p.z;
     }
     bool operator!=(const Point3<T> &p) const { return !(*this == p); }
-    // Point3 Public Methods
     template <typename U>
     explicit Point3(const Point3<U> &p) : x(T(p.x)), y(T(p.y)), z(T(p.z)) {}
     template <typename U>
     explicit operator Vector3<U>() const {
         return Vector3<U>(U(x), U(y), U(z));
     }
-    // Point3 Public Methods
     template <typename U>
     explicit Point3(const Vector3<U> &v) : x(T(v.x)), y(T(v.y)), z(T(v.z)) {}
-    // Point3 Public Methods
     Point3<T> operator+(const Vector3<T> &v) const {
         return Point3<T>(x + v.x, y + v.y, z + v.z);
     }
@@ -236,7 +222,6 @@ class Point3 {
         z -= v.z;
         return *this;
     }
-    // Point3 Public Methods
     Point3<T> operator+(const Point3<T> &p) const {
         return Point3<T>(x + p.x, y + p.y, z + p.z);
     }
@@ -277,7 +262,6 @@ class Point3 {
 
 typedef Point3<Float> Point3f;
 typedef Point3<int> Point3i;
-// Point Declarations
 template <typename T>
 class Point2 {
   public:
@@ -306,7 +290,6 @@ class Point2 {
     }
     bool operator==(const Point2<T> &p) const { return x == p.x && y == p.y; }
     bool operator!=(const Point2<T> &p) const { return !(*this == p); }
-    // Point2 Public Methods
     Point2<T> operator+(const Vector2<T> &v) const {
         return Point2<T>(x + v.x, y + v.y);
     }
@@ -390,7 +373,6 @@ class Normal3 {
     bool operator!=(const Normal3<T> &n) const { return !(*this == n); }
     Float LengthSquared() const { return x * x + y * y + z * z; }
     Float Length() const { return std::sqrt(LengthSquared()); }
-    // Normal3 Public Methods
     Normal3<T> operator+(const Normal3<T> &n) const {
         return Normal3<T>(x + n.x, y + n.y, z + n.z);
     }
@@ -434,7 +416,6 @@ class Normal3 {
         return *this;
     }
     Normal3<T> operator-() const { return Normal3<T>(-x, -y, -z); }
-    // Normal3 Public Methods
     explicit Normal3(const Vector3<T> &v) : x(v.x), y(v.y), z(v.z) {}
     T x, y, z;
 };
@@ -469,7 +450,6 @@ class Bounds3 {
         pMin = Point3<T>(maxNum, maxNum, maxNum);
         pMax = Point3<T>(minNum, minNum, minNum);
     }
-    // Bounds3 Public Methods
     bool IsEmpty() const {
         return pMin.x > pMax.x || pMin.y > pMax.y || pMin.z > pMax.z;
     }
@@ -477,20 +457,17 @@ class Bounds3 {
         return !IsEmpty() &&
                (pMin.x == pMax.x || pMin.y == pMax.y || pMin.z == pMax.z);
     }
-    // Bounds3 Public Methods
     explicit Bounds3(const Point3<T> &p) : pMin(p), pMax(p) {}
     Bounds3(const Point3<T> &p1, const Point3<T> &p2)
         : pMin(std::min(p1.x, p2.x), std::min(p1.y, p2.y),
                std::min(p1.z, p2.z)),
           pMax(std::max(p1.x, p2.x), std::max(p1.y, p2.y),
                std::max(p1.z, p2.z)) {}
-    // Bounds3 Public Methods
     template <typename U>
     explicit operator Bounds3<U>() const {
         if (IsEmpty()) return Bounds3<U>();
         return Bounds3<U>(Point3<U>(pMin), Point3<U>(pMax));
     }
-    // Bounds3 Public Methods
     const Point3<T> &operator[](int i) const {
         if (i == 0) return pMin;
         if (i == 1) return pMax;
@@ -505,7 +482,6 @@ class Bounds3 {
         return b.pMin == pMin && b.pMax == pMax;
     }
     bool operator!=(const Bounds3<T> &b) const { return !(*this == b); }
-    // Bounds3 Public Methods
     Point3<T> Corner(int corner) const {
         if (corner < 0 || corner > 7)
             throw std::out_of_range("Bounds3::Corner: corner must be 0 to 7");
@@ -513,9 +489,7 @@ class Bounds3 {
                          (*this)[(corner & 2) ? 1 : 0].y,
                          (*this)[(corner & 4) ? 1 : 0].z);
     }
-    // Bounds3 Public Methods
     Vector3<T> Diagonal() const { return pMax - pMin; }
-    // Bounds3 Public Methods
     T SurfaceArea() const {
         if (IsEmpty()) return T(0);
         Vector3<T> d = Diagonal();
@@ -526,14 +500,12 @@ class Bounds3 {
         Vector3<T> d = Diagonal();
         return d.x * d.y * d.z;
     }
-    // Bounds3 Public Methods
     int MaximumExtent() const {
         Vector3<T> d = Diagonal();
         if (d.x > d.y && d.x > d.z) return 0;
         if (d.y > d.z) return 1;
         return 2;
     }
-    // Bounds3 Public Methods
     Point3<T> Lerp(const Point3f &t) const {
         return Point3<T>(lrt::Lerp(t.x, pMin.x, pMax.x),
                          lrt::Lerp(t.y, pMin.y, pMax.y),
@@ -546,12 +518,10 @@ class Bounds3 {
         if (pMax.z > pMin.z) o.z /= pMax.z - pMin.z;
         return o;
     }
-    // Bounds3 Public Methods
     void BoundingSphere(Point3<T> *center, Float *radius) const {
         *center = (pMin + pMax) / 2;
         *radius = Inside(*center, *this) ? Distance(*center, pMax) : 0;
     }
-    // Bounds3 Public Methods
     bool IntersectP(const Ray &ray, Float *hitt0 = nullptr,
                     Float *hitt1 = nullptr) const;
     inline bool IntersectP(const Ray &ray, const Vector3f &invDir,
@@ -562,7 +532,6 @@ class Bounds3 {
 
 typedef Bounds3<Float> Bounds3f;
 typedef Bounds3<int> Bounds3i;
-// Bounds Declarations
 template <typename T>
 class Bounds2 {
   public:
@@ -586,7 +555,6 @@ class Bounds2 {
     bool IsDegenerate() const {
         return !IsEmpty() && (pMin.x == pMax.x || pMin.y == pMax.y);
     }
-    // Bounds2 Public Methods
     const Point2<T> &operator[](int i) const {
         if (i == 0) return pMin;
         if (i == 1) return pMax;
@@ -611,7 +579,6 @@ class Bounds2 {
         Vector2<T> diag = Diagonal();
         return (diag.x > diag.y) ? 0 : 1;
     }
-    // Bounds2 Public Methods
     Point2<T> Lerp(const Point2f &t) const {
         return Point2<T>(lrt::Lerp(t.x, pMin.x, pMax.x),
                          lrt::Lerp(t.y, pMin.y, pMax.y));
@@ -636,28 +603,23 @@ template <typename T, typename U>
 inline Vector3<T> operator*(U s, const Vector3<T> &v) {
     return v * s;
 }
-// Geometry Inline Functions
 template <typename T>
 inline Vector3<T> Abs(const Vector3<T> &v) {
     return Vector3<T>(std::abs(v.x), std::abs(v.y), std::abs(v.z));
 }
-// Geometry Inline Functions
 template <typename T>
 inline std::ostream &operator<<(std::ostream &os, const Vector3<T> &v) {
     os << "[ " << v.x << ", " << v.y << ", " << v.z << " ]";
     return os;
 }
-// Geometry Inline Functions
 template <typename T>
 inline T Dot(const Vector3<T> &v1, const Vector3<T> &v2) {
     return v1.x * v2.x + v1.y * v2.y + v1.z * v2.z;
 }
-// Geometry Inline Functions
 template <typename T>
 inline T AbsDot(const Vector3<T> &v1, const Vector3<T> &v2) {
     return std::abs(Dot(v1, v2));
 }
-// Geometry Inline Functions
 template <typename T>
 inline Vector3<T> Cross(const Vector3<T> &v1, const Vector3<T> &v2) {
     double v1x = v1.x, v1y = v1.y, v1z = v1.z;
@@ -666,12 +628,10 @@ inline Vector3<T> Cross(const Vector3<T> &v1, const Vector3<T> &v2) {
                       T(v1z * v2x - v1x * v2z),
                       T(v1x * v2y - v1y * v2x));
 }
-// Geometry Inline Functions
 template <typename T>
 inline Vector3<T> Normalize(const Vector3<T> &v) {
     return v / v.Length();
 }
-// Geometry Inline Functions
 template <typename T>
 inline T MinComponent(const Vector3<T> &v) {
     return std::min(v.x, std::min(v.y, v.z));
@@ -684,7 +644,6 @@ template <typename T>
 inline int MaxDimension(const Vector3<T> &v) {
     return (v.x > v.y) ? ((v.x > v.z) ? 0 : 2) : ((v.y > v.z) ? 1 : 2);
 }
-// Geometry Inline Functions
 template <typename T>
 inline Vector3<T> Min(const Vector3<T> &v1, const Vector3<T> &v2) {
     return Vector3<T>(std::min(v1.x, v2.x), std::min(v1.y, v2.y),
@@ -695,12 +654,10 @@ inline Vector3<T> Max(const Vector3<T> &v1, const Vector3<T> &v2) {
     return Vector3<T>(std::max(v1.x, v2.x), std::max(v1.y, v2.y),
                       std::max(v1.z, v2.z));
 }
-// Geometry Inline Functions
 template <typename T>
 inline Vector3<T> Permute(const Vector3<T> &v, int x, int y, int z) {
     return Vector3<T>(v[x], v[y], v[z]);
 }
-// Geometry Inline Functions
 template <typename T>
 inline void CoordinateSystem(const Vector3<T> &v1, Vector3<T> *v2,
                              Vector3<T> *v3) {
@@ -713,7 +670,6 @@ inline void CoordinateSystem(const Vector3<T> &v1, Vector3<T> *v2,
               std::sqrt(v1.y * v1.y + v1.z * v1.z);
     *v3 = Cross(v1, *v2);
 }
-// Geometry Inline Functions
 template <typename T, typename U>
 inline Vector2<T> operator*(U s, const Vector2<T> &v) {
     return v * s;
@@ -739,7 +695,6 @@ inline std::ostream &operator<<(std::ostream &os, const Vector2<T> &v) {
     os << "[ " << v.x << ", " << v.y << " ]";
     return os;
 }
-// Geometry Inline Functions
 template <typename T, typename U>
 inline Point3<T> operator*(U f, const Point3<T> &p) {
     return p * f;
@@ -749,7 +704,6 @@ inline std::ostream &operator<<(std::ostream &os, const Point3<T> &p) {
     os << "[ " << p.x << ", " << p.y << ", " << p.z << " ]";
     return os;
 }
-// Geometry Inline Functions
 template <typename T>
 inline Float Distance(const Point3<T> &p1, const Point3<T> &p2) {
     return (p1 - p2).Length();
@@ -758,12 +712,10 @@ template <typename T>
 inline Float DistanceSquared(const Point3<T> &p1, const Point3<T> &p2) {
     return (p1 - p2).LengthSquared();
 }
-// Geometry Inline Functions
 template <typename T>
 inline Point3<T> Lerp(Float t, const Point3<T> &p0, const Point3<T> &p1) {
     return (1 - t) * p0 + t * p1;
 }
-// Geometry Inline Functions
 template <typename T>
 inline Point3<T> Min(const Point3<T> &p1, const Point3<T> &p2) {
     return Point3<T>(std::min(p1.x, p2.x), std::min(p1.y, p2.y),
@@ -790,7 +742,6 @@ template <typename T>
 inline Point3<T> Permute(const Point3<T> &p, int x, int y, int z) {
     return Point3<T>(p[x], p[y], p[z]);
 }
-// Geometry Inline Functions
 template <typename T, typename U>
 inline Point2<T> operator*(U f, const Point2<T> &p) {
     return p * f;
@@ -828,7 +779,6 @@ inline std::ostream &operator<<(std::ostream &os, const Point2<T> &p) {
     os << "[ " << p.x << ", " << p.y << " ]";
     return os;
 }
-// Geometry Inline Functions
 template <typename T>
 inline T Dot(const Normal3<T> &n, const Vector3<T> &v) {
     return n.x * v.x + n.y * v.y + n.z * v.z;
@@ -861,7 +811,6 @@ template <typename T>
 inline Vector3<T> Cross(const Normal3<T> &n, const Vector3<T> &v) {
     return Cross(Vector3<T>(n), v);
 }
-// Geometry Inline Functions
 template <typename T, typename U>
 inline Normal3<T> operator*(U f, const Normal3<T> &n) {
     return n * f;
@@ -879,7 +828,6 @@ inline std::ostream &operator<<(std::ostream &os, const Normal3<T> &n) {
     os << "[ " << n.x << ", " << n.y << ", " << n.z << " ]";
     return os;
 }
-// Geometry Inline Functions
 template <typename T>
 inline Normal3<T> Faceforward(const Normal3<T> &n, const Vector3<T> &v) {
     return (Dot(n, v) < 0) ? -n : n;
@@ -896,13 +844,11 @@ template <typename T>
 inline Vector3<T> Faceforward(const Vector3<T> &v, const Normal3<T> &n2) {
     return (Dot(v, n2) < 0) ? -v : v;
 }
-// Geometry Inline Functions
 inline std::ostream &operator<<(std::ostream &os, const Ray &r) {
     os << "[o=" << r.o << ", d=" << r.d << ", tMax=" << r.tMax
        << ", time=" << r.time << "]";
     return os;
 }
-// Geometry Inline Functions
 template <typename T>
 inline Bounds3<T> Union(const Bounds3<T> &b, const Point3<T> &p) {
     Bounds3<T> ret;
@@ -910,7 +856,6 @@ inline Bounds3<T> Union(const Bounds3<T> &b, const Point3<T> &p) {
     ret.pMax = Max(b.pMax, p);
     return ret;
 }
-// Geometry Inline Functions
 template <typename T>
 inline Bounds3<T> Union(const Bounds3<T> &b1, const Bounds3<T> &b2) {
     using Box = Bounds3<T>;
@@ -920,7 +865,6 @@ inline Bounds3<T> Union(const Bounds3<T> &b1, const Bounds3<T> &b2) {
     ret.pMax = Max(b1.pMax, b2.pMax);
     return ret;
 }
-// Geometry Inline Functions
 template <typename T>
 inline Bounds3<T> Intersect(const Bounds3<T> &b1, const Bounds3<T> &b2) {
     using Box = Bounds3<T>;
@@ -930,7 +874,6 @@ inline Bounds3<T> Intersect(const Bounds3<T> &b1, const Bounds3<T> &b2) {
     ret.pMax = Min(b1.pMax, b2.pMax);
     return ret.IsEmpty() ? Box() : ret;
 }
-// Geometry Inline Functions
 template <typename T>
 inline bool Overlaps(const Bounds3<T> &b1, const Bounds3<T> &b2) {
     bool x = std::max(b1.pMin.x, b2.pMin.x) <= std::min(b1.pMax.x, b2.pMax.x);
@@ -938,7 +881,6 @@ inline bool Overlaps(const Bounds3<T> &b1, const Bounds3<T> &b2) {
     bool z = std::max(b1.pMin.z, b2.pMin.z) <= std::min(b1.pMax.z, b2.pMax.z);
     return x && y && z;
 }
-// Geometry Inline Functions
 template <typename T>
 inline bool Inside(const Point3<T> &p, const Bounds3<T> &b) {
     return p.x >= b.pMin.x && p.x <= b.pMax.x && p.y >= b.pMin.y &&
@@ -949,7 +891,6 @@ inline bool InsideExclusive(const Point3<T> &p, const Bounds3<T> &b) {
     return p.x >= b.pMin.x && p.x < b.pMax.x && p.y >= b.pMin.y &&
            p.y < b.pMax.y && p.z >= b.pMin.z && p.z < b.pMax.z;
 }
-// Geometry Inline Functions
 template <typename T, typename U>
 inline Bounds3<T> Expand(const Bounds3<T> &b, U delta) {
     if (b.IsEmpty()) return Bounds3<T>();
@@ -958,7 +899,6 @@ inline Bounds3<T> Expand(const Bounds3<T> &b, U delta) {
     ret.pMax = b.pMax + Vector3<T>(delta, delta, delta);
     return ret.IsEmpty() ? Bounds3<T>() : ret;
 }
-// Geometry Inline Functions
 template <typename T, typename U>
 inline Float DistanceSquared(const Point3<T> &p, const Bounds3<U> &b) {
     Float dx = std::max({Float(0), Float(b.pMin.x - p.x),
@@ -973,13 +913,11 @@ template <typename T, typename U>
 inline Float Distance(const Point3<T> &p, const Bounds3<U> &b) {
     return std::sqrt(DistanceSquared(p, b));
 }
-// Geometry Inline Functions
 template <typename T>
 inline std::ostream &operator<<(std::ostream &os, const Bounds3<T> &b) {
     os << "[ " << b.pMin << " - " << b.pMax << " ]";
     return os;
 }
-// Geometry Inline Functions
 template <typename T>
 inline Bounds2<T> Union(const Bounds2<T> &b, const Point2<T> &p) {
     Bounds2<T> ret;
@@ -1011,7 +949,6 @@ inline bool Overlaps(const Bounds2<T> &b1, const Bounds2<T> &b2) {
     bool y = std::max(b1.pMin.y, b2.pMin.y) <= std::min(b1.pMax.y, b2.pMax.y);
     return x && y;
 }
-// Geometry Inline Functions
 template <typename T>
 inline bool Inside(const Point2<T> &p, const Bounds2<T> &b) {
     return p.x >= b.pMin.x && p.x <= b.pMax.x && p.y >= b.pMin.y &&
@@ -1035,7 +972,6 @@ inline std::ostream &operator<<(std::ostream &os, const Bounds2<T> &b) {
     os << "[ " << b.pMin << " - " << b.pMax << " ]";
     return os;
 }
-// Geometry Inline Functions
 inline Point3f OffsetRayOrigin(const Point3f &p, const Vector3f &pError,
                                const Normal3f &n, const Vector3f &w) {
     // Offset p along n to the side of w

@@ -13,7 +13,6 @@ SurfaceInteraction::SurfaceInteraction(
     : SurfaceInteraction(p, pError, uv, wo, dpdu, dpdv, dndu, dndv,
                          Normal3f(Normalize(Cross(dpdu, dpdv))), time,
                          flipNormal, faceIndex) {}
-// Interaction Method Definitions
 void SurfaceInteraction::SetShadingGeometry(const Vector3f &dpdus,
                                             const Vector3f &dpdvs,
                                             const Normal3f &dndus,

@@ -18,20 +18,16 @@ struct Interaction {
     static Vector3f NormalizeDirection(const Vector3f &w) {
         return w.LengthSquared() > 0 ? Normalize(w) : w;
     }
-    // Interaction Public Methods
     bool IsSurfaceInteraction() const { return n != Normal3f(); }
-    // Interaction Public Methods
     Ray SpawnRay(const Vector3f &d) const {
         Point3f o = OffsetRayOrigin(p, pError, n, d);
         return Ray(o, d, Infinity, time);
     }
-    // Interaction Public Methods
     Ray SpawnRayTo(const Point3f &p2) const {
         Point3f o = OffsetRayOrigin(p, pError, n, p2 - p);
         Vector3f d = p2 - o;
         return Ray(o, d, 1 - ShadowEpsilon, time);
     }
-    // Interaction Public Methods
     Ray SpawnRayTo(const Interaction &it) const {
         Point3f o = OffsetRayOrigin(p, pError, n, it.p - p);
         Point3f target = OffsetRayOrigin(it.p, it.pError, it.n, o - it.p);
@@ -62,7 +58,6 @@ class SurfaceInteraction : public Interaction {
                        const Normal3f &dndu, const Normal3f &dndv,
                        const Normal3f &normal, Float time, bool flipNormal,
                        int faceIndex);
-    // SurfaceInteraction Public Methods
     void SetShadingGeometry(const Vector3f &dpdus, const Vector3f &dpdvs,
                             const Normal3f &dndus, const Normal3f &dndvs,
                             bool orientationIsAuthoritative);

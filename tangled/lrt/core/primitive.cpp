@@ -7,7 +7,6 @@ namespace lrt {
 
 // Primitive Method Definitions
 Primitive::~Primitive() {}
-// Primitive Method Definitions
 GeometricPrimitive::GeometricPrimitive(const std::shared_ptr<Shape> &shape)
     : shape(shape) {
     if (!shape)
@@ -17,7 +16,6 @@ GeometricPrimitive::GeometricPrimitive(const std::shared_ptr<Shape> &shape)
 Bounds3f GeometricPrimitive::WorldBound() const {
     return shape->WorldBound();
 }
-// Primitive Method Definitions
 bool GeometricPrimitive::Intersect(const Ray &r,
                                    SurfaceInteraction *isect) const {
     Float tHit;
@@ -30,7 +28,6 @@ bool GeometricPrimitive::Intersect(const Ray &r,
 bool GeometricPrimitive::IntersectP(const Ray &r) const {
     return shape->IntersectP(r);
 }
-// Primitive Method Definitions
 TransformedPrimitive::TransformedPrimitive(
     const std::shared_ptr<Primitive> &primitive,
     const Transform &PrimitiveToWorld)
@@ -44,7 +41,6 @@ TransformedPrimitive::TransformedPrimitive(
 Bounds3f TransformedPrimitive::WorldBound() const {
     return PrimitiveToWorld(primitive->WorldBound());
 }
-// Primitive Method Definitions
 bool TransformedPrimitive::Intersect(const Ray &r,
                                      SurfaceInteraction *isect) const {
     Ray ray(WorldToPrimitive(r.o), WorldToPrimitive(r.d), r.tMax, r.time);

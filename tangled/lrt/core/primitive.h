@@ -19,7 +19,6 @@ class Primitive {
                            SurfaceInteraction *isect) const = 0;
     virtual bool IntersectP(const Ray &r) const = 0;
 };
-// Primitive Declarations
 class GeometricPrimitive : public Primitive {
   public:
     // GeometricPrimitive Public Methods
@@ -31,7 +30,6 @@ class GeometricPrimitive : public Primitive {
   private:
     std::shared_ptr<Shape> shape;
 };
-// Primitive Declarations
 class TransformedPrimitive : public Primitive {
   public:
     // TransformedPrimitive Public Methods
@@ -44,7 +42,6 @@ class TransformedPrimitive : public Primitive {
     std::shared_ptr<Primitive> primitive;
     const Transform PrimitiveToWorld, WorldToPrimitive;
 };
-// Primitive Declarations
 class Aggregate : public Primitive {};
 
 }  // namespace lrt

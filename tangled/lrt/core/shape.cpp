@@ -19,7 +19,6 @@ Shape::Shape(const Transform *ObjectToWorld, const Transform *WorldToObject,
       transformSwapsHandedness(ObjectToWorld->SwapsHandedness()) {}
 
 Shape::~Shape() {}
-// Shape Method Definitions
 Bounds3f Shape::WorldBound() const { return (*ObjectToWorld)(ObjectBound()); }
 
 }  // namespace lrt

@@ -14,25 +14,19 @@ class Shape {
     Shape(const Transform *ObjectToWorld, const Transform *WorldToObject,
           bool reverseOrientation);
     virtual ~Shape();
-    // Shape Interface
     virtual Bounds3f ObjectBound() const = 0;
-    // Shape Interface
     virtual Bounds3f WorldBound() const;
-    // Shape Interface
     virtual bool Intersect(const Ray &ray, Float *tHit, SurfaceInteraction *isect,
                            bool testAlphaTexture = true) const = 0;
-    // Shape Interface
     virtual bool IntersectP(const Ray &ray,
                             bool testAlphaTexture = true) const {
         Float tHit = 0;
         SurfaceInteraction isect;
         return Intersect(ray, &tHit, &isect, testAlphaTexture);
     }
-    // Shape Interface
     virtual Float Area() const = 0;
     // Shape Public Data
     const Transform *ObjectToWorld, *WorldToObject;
-    // Shape Public Data
     const bool reverseOrientation;
     const bool transformSwapsHandedness;
 };

@@ -36,7 +36,6 @@ inline bool Bounds3<T>::IntersectP(const Ray &ray, Float *hitt0,
     if (hitt1) *hitt1 = std::min(t1, ray.tMax);
     return true;
 }
-// Slab Test Functions
 template <typename T>
 inline bool Bounds3<T>::IntersectP(const Ray &ray, const Vector3f &invDir,
                                    const int dirIsNeg[3]) const {

@@ -16,7 +16,6 @@ Matrix4x4 Transpose(const Matrix4x4 &m) {
             r.m[i][j] = m.m[j][i];
     return r;
 }
-// Matrix4x4 Method Definitions
 Matrix4x4 Inverse(const Matrix4x4 &m) {
     // Reject matrices with non-finite entries
     for (int i = 0; i < 4; ++i)
@@ -90,11 +89,9 @@ Bounds3f Transform::operator()(const Bounds3f &b) const {
         ret = Union(ret, M(b.Corner(i)));
     return ret;
 }
-// Transform Method Definitions
 Transform Transform::operator*(const Transform &t2) const {
     return Transform(Matrix4x4::Mul(m, t2.m), Matrix4x4::Mul(t2.mInv, mInv));
 }
-// Transform Method Definitions
 bool Transform::SwapsHandedness() const {
     Float det =
         m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
@@ -102,7 +99,6 @@ bool Transform::SwapsHandedness() const {
         m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
     return det < 0;
 }
-// Transform Method Definitions
 SurfaceInteraction Transform::operator()(const SurfaceInteraction &si) const {
     const Transform &t = *this;
     SurfaceInteraction ret;
@@ -140,7 +136,6 @@ Transform Translate(const Vector3f &delta) {
                    0, 0, 0, 1);
     return Transform(m, minv);
 }
-// Transform Function Definitions
 Transform Scale(Float x, Float y, Float z) {
     if (x == 0 || y == 0 || z == 0)
         throw std::domain_error("Scale: zero scale factor");
@@ -154,7 +149,6 @@ Transform Scale(Float x, Float y, Float z) {
                    0, 0, 0, 1);
     return Transform(m, minv);
 }
-// Transform Function Definitions
 Transform RotateX(Float theta) {
     Float sinTheta = std::sin(Radians(theta));
     Float cosTheta = std::cos(Radians(theta));
@@ -182,7 +176,6 @@ Transform RotateZ(Float theta) {
                 0, 0, 0, 1);
     return Transform(m, Transpose(m));
 }
-// Transform Function Definitions
 Transform Rotate(Float theta, const Vector3f &axis) {
     Float len2 = axis.LengthSquared();
     if (!(len2 > 0) || !std::isfinite(len2))
@@ -203,7 +196,6 @@ Transform Rotate(Float theta, const Vector3f &axis) {
     m.m[2][2] = a.z * a.z + (1 - a.z * a.z) * cosTheta;
     return Transform(m, Transpose(m));
 }
-// Transform Function Definitions
 Transform LookAt(const Point3f &pos, const Point3f &look,
                  const Vector3f &up) {
     Vector3f dir = look - pos;
@@ -225,14 +217,12 @@ Transform LookAt(const Point3f &pos, const Point3f &look,
                             0, 0, 0, 1);
     return Transform(Inverse(cameraToWorld), cameraToWorld);
 }
-// Transform Function Definitions
 Transform Orthographic(Float zNear, Float zFar) {
     if (!(zFar > zNear) || !std::isfinite(zFar - zNear))
         throw std::domain_error("Orthographic: need finite zNear < zFar");
     return Scale(1, 1, 1 / (zFar - zNear)) *
            Translate(Vector3f(0, 0, -zNear));
 }
-// Transform Function Definitions
 Transform Perspective(Float fov, Float n, Float f) {
     if (!(fov > 0 && fov < 180))
         throw std::domain_error(

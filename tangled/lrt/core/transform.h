@@ -33,7 +33,6 @@ struct Matrix4x4 {
         row[2][0] = t20; row[2][1] = t21; row[2][2] = t22; row[2][3] = t23;
         row[3][0] = t30; row[3][1] = t31; row[3][2] = t32; row[3][3] = t33;
     }
-    // Matrix4x4 Public Methods
     bool operator==(const Matrix4x4 &m2) const {
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j)
@@ -41,9 +40,7 @@ struct Matrix4x4 {
         return true;
     }
     bool operator!=(const Matrix4x4 &m2) const { return !(*this == m2); }
-    // Matrix4x4 Public Methods
     friend Matrix4x4 Transpose(const Matrix4x4 &m);
-    // Matrix4x4 Public Methods
     static Matrix4x4 Mul(const Matrix4x4 &m1, const Matrix4x4 &m2) {
         Matrix4x4 r;
         for (int i = 0; i < 4; ++i)
@@ -52,7 +49,6 @@ struct Matrix4x4 {
                             m1.m[i][2] * m2.m[2][j] + m1.m[i][3] * m2.m[3][j];
         return r;
     }
-    // Matrix4x4 Public Methods
     friend Matrix4x4 Inverse(const Matrix4x4 &m);
     Float m[4][4];
 };
@@ -65,14 +61,12 @@ class Transform {
     Transform(const Float mat[4][4]) : m(mat), mInv(Inverse(m)) {}
     Transform(const Matrix4x4 &m) : m(m), mInv(Inverse(m)) {}
     Transform(const Matrix4x4 &m, const Matrix4x4 &mInv) : m(m), mInv(mInv) {}
-    // Transform Public Methods
     friend Transform Inverse(const Transform &t) {
         return Transform(t.mInv, t.m);
     }
     friend Transform Transpose(const Transform &t) {
         return Transform(Transpose(t.m), Transpose(t.mInv));
     }
-    // Transform Public Methods
     bool operator==(const Transform &t) const {
         return t.m == m && t.mInv == mInv;
     }
@@ -88,7 +82,6 @@ class Transform {
     bool IsIdentity() const { return m == Matrix4x4(); }
     const Matrix4x4 &GetMatrix() const { return m; }
     const Matrix4x4 &GetInverseMatrix() const { return mInv; }
-    // Transform Public Methods
     bool HasScale() const {
         Float la2 = (*this)(Vector3f(1, 0, 0)).LengthSquared();
         Float lb2 = (*this)(Vector3f(0, 1, 0)).LengthSquared();
@@ -98,7 +91,6 @@ class Transform {
         };
         return notOne(la2) || notOne(lb2) || notOne(lc2);
     }
-    // Transform Public Methods
     template <typename T>
     Point3<T> operator()(const Point3<T> &p) const;
     template <typename T>
@@ -107,11 +99,8 @@ class Transform {
     Normal3<T> operator()(const Normal3<T> &n) const;
     Ray operator()(const Ray &r) const;
     Bounds3f operator()(const Bounds3f &b) const;
-    // Transform Public Methods
     Transform operator*(const Transform &t2) const;
-    // Transform Public Methods
     bool SwapsHandedness() const;
-    // Transform Public Methods
     template <typename T>
     Point3<T> operator()(const Point3<T> &p, Vector3<T> *pError) const;
     template <typename T>
@@ -123,12 +112,10 @@ class Transform {
     Vector3<T> operator()(const Vector3<T> &v, const Vector3<T> &vError,
                           Vector3<T> *vTransError) const;
     Ray operator()(const Ray &r, Vector3f *oError, Vector3f *dError) const;
-    // Transform Public Methods
     bool IsAffine() const {
         return m.m[3][0] == 0 && m.m[3][1] == 0 && m.m[3][2] == 0 &&
                m.m[3][3] == 1;
     }
-    // Transform Public Methods
     SurfaceInteraction operator()(const SurfaceInteraction &si) const;
 
   private:
@@ -152,7 +139,6 @@ inline Point3<T> Transform::operator()(const Point3<T> &p) const {
         return Point3<T>(xp, yp, zp);
     return Point3<T>(xp / wp, yp / wp, zp / wp);
 }
-// Transform Inline Method Definitions
 template <typename T>
 inline Vector3<T> Transform::operator()(const Vector3<T> &v) const {
     T x = v.x, y = v.y, z = v.z;
@@ -160,7 +146,6 @@ inline Vector3<T> Transform::operator()(const Vector3<T> &v) const {
                       m.m[1][0] * x + m.m[1][1] * y + m.m[1][2] * z,
                       m.m[2][0] * x + m.m[2][1] * y + m.m[2][2] * z);
 }
-// Transform Inline Method Definitions
 template <typename T>
 inline Normal3<T> Transform::operator()(const Normal3<T> &n) const {
     // Transform n by the inverse transpose
@@ -169,12 +154,10 @@ inline Normal3<T> Transform::operator()(const Normal3<T> &n) const {
                       mInv.m[0][1] * x + mInv.m[1][1] * y + mInv.m[2][1] * z,
                       mInv.m[0][2] * x + mInv.m[1][2] * y + mInv.m[2][2] * z);
 }
-// Transform Inline Method Definitions
 inline Ray Transform::operator()(const Ray &r) const {
     Vector3f oError, dError;
     return (*this)(r, &oError, &dError);
 }
-// Transform Inline Method Definitions
 template <typename T>
 inline Point3<T> Transform::operator()(const Point3<T> &p,
                                        Vector3<T> *pError) const {
@@ -199,7 +182,6 @@ inline Point3<T> Transform::operator()(const Point3<T> &p,
                            std::abs(m.m[3][2] * z) + std::abs(m.m[3][3]));
     return DivideWithError(xp, yp, zp, wp, wError, pError);
 }
-// Transform Inline Method Definitions
 template <typename T>
 inline Point3<T> Transform::DivideWithError(T xp, T yp, T zp, T wp,
                                             T wError, Vector3<T> *error) {
@@ -220,7 +202,6 @@ inline Point3<T> Transform::DivideWithError(T xp, T yp, T zp, T wp,
             gamma(1) * std::abs(q.z));
     return q;
 }
-// Transform Inline Method Definitions
 template <typename T>
 inline Point3<T> Transform::operator()(const Point3<T> &p,
                                        const Vector3<T> &pError,
@@ -258,7 +239,6 @@ inline Point3<T> Transform::operator()(const Point3<T> &p,
                     std::abs(m.m[3][2]) * pError.z);
     return DivideWithError(xp, yp, zp, wp, wError, pTransError);
 }
-// Transform Inline Method Definitions
 template <typename T>
 inline Vector3<T> Transform::operator()(const Vector3<T> &v,
                                         Vector3<T> *vTransError) const {
@@ -294,7 +274,6 @@ inline Vector3<T> Transform::operator()(const Vector3<T> &v,
                         std::abs(m.m[2][2] * z)));
     return (*this)(v);
 }
-// Transform Inline Method Definitions
 inline Ray Transform::operator()(const Ray &r, Vector3f *oError,
                                  Vector3f *dError) const {
     Point3f o = (*this)(r.o, oError);

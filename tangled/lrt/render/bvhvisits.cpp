@@ -42,7 +42,6 @@ int CountNodeVisits(const BVHAccel &bvh, const Ray &ray,
     }
     return visits;
 }
-// BVH Visits Definitions
 RGB HeatColor(Float v) {
     static const Float stops[5][3] = {{0.03, 0.02, 0.10},
                                       {0.33, 0.07, 0.50},
@@ -59,7 +58,6 @@ RGB HeatColor(Float v) {
         c[k] = InverseGammaCorrect((1 - f) * stops[i][k] + f * stops[i + 1][k]);
     return RGB(c[0], c[1], c[2]);
 }
-// BVH Visits Definitions
 Image RenderNodeVisits(const BVHAccel &bvh, const PinholeCamera &camera,
                        int maxVisits, std::vector<int> *visits) {
     Image image(camera.width, camera.height);

@@ -14,9 +14,7 @@ namespace lrt {
 // BVH Visits Declarations
 int CountNodeVisits(const BVHAccel &bvh, const Ray &ray,
                     SurfaceInteraction *isect, bool *hit);
-// BVH Visits Declarations
 RGB HeatColor(Float v);
-// BVH Visits Declarations
 Image RenderNodeVisits(const BVHAccel &bvh, const PinholeCamera &camera,
                        int maxVisits, std::vector<int> *visits = nullptr);
 

@@ -33,7 +33,6 @@ PinholeCamera::PinholeCamera(const Transform &CameraToWorld, Float fov,
     }
     eye = CameraToWorld(Point3f(0, 0, 0));
 }
-// PinholeCamera Method Definitions
 Ray PinholeCamera::GenerateRay(const Point2f &pRaster) const {
     Vector3f dCamera((2 * pRaster.x / Float(width) - 1) * sx,
                      (1 - 2 * pRaster.y / Float(height)) * sy, 1);

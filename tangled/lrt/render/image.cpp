@@ -37,7 +37,6 @@ size_t Image::Index(int x, int y) const {
                                 std::to_string(height) + " image");
     return size_t(y) * size_t(width) + size_t(x);
 }
-// Image Method Definitions
 std::vector<uint8_t> Image::EncodeSRGB8() const {
     std::vector<uint8_t> bytes(3 * pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i) {
@@ -47,7 +46,6 @@ std::vector<uint8_t> Image::EncodeSRGB8() const {
     }
     return bytes;
 }
-// Image Method Definitions
 void Image::WritePNG(const std::string &filename) const {
     if (pixels.empty())
         throw std::invalid_argument("Image::WritePNG: \"" + filename +
@@ -79,7 +77,6 @@ void Image::WritePNG(const std::string &filename) const {
                                  filename + "\": " + reason);
     }
 }
-// Image Method Definitions
 Image Image::ReadPNG(const std::string &filename) {
     int w = 0, h = 0, channels = 0;
     std::unique_ptr<stbi_uc, void (*)(void *)> data(

@@ -35,7 +35,6 @@ class Image {
     const RGB &operator()(int x, int y) const { return pixels[Index(x, y)]; }
     // Image Public Methods
     std::vector<uint8_t> EncodeSRGB8() const;
-    // Image Public Methods
     void WritePNG(const std::string &filename) const;
     static Image ReadPNG(const std::string &filename);
 
@@ -55,7 +54,6 @@ inline Float InverseGammaCorrect(Float v) {
     if (v <= Float(0.04045)) return v / Float(12.92);
     return std::pow((v + Float(0.055)) / Float(1.055), Float(2.4));
 }
-// Image Inline Functions
 inline uint8_t EncodeSRGB8(Float v) {
     if (!(v > 0)) return 0;
     if (v >= 1) return 255;

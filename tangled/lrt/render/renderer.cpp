@@ -13,7 +13,6 @@ void RenderScene::Add(const std::shared_ptr<Primitive> &primitive,
         throw std::invalid_argument("RenderScene::Add: null primitive");
     objects.push_back({primitive, albedo});
 }
-// Renderer Method Definitions
 bool RenderScene::Intersect(const Ray &ray, SurfaceInteraction *isect,
                             const SceneObject **object) const {
     bool hit = false;
@@ -30,7 +29,6 @@ bool RenderScene::IntersectP(const Ray &ray) const {
         if (o.primitive->IntersectP(ray)) return true;
     return false;
 }
-// Renderer Method Definitions
 Image Render(const RenderScene &scene, const PinholeCamera &camera,
              const RenderOptions &options, std::vector<Float> *depth) {
     Image image(camera.width, camera.height, options.background);
@@ -48,7 +46,6 @@ Image Render(const RenderScene &scene, const PinholeCamera &camera,
         }
     return image;
 }
-// Renderer Method Definitions
 RGB Shade(const Ray &ray, const SurfaceInteraction &isect,
           const SceneObject &object, const RenderScene &scene,
           const PinholeCamera &camera, const RenderOptions &options) {

@@ -36,7 +36,6 @@ class RenderScene {
         Add(std::make_shared<GeometricPrimitive>(shape), albedo);
     }
     const std::vector<SceneObject> &Objects() const { return objects; }
-    // RenderScene Public Methods
     bool Intersect(const Ray &ray, SurfaceInteraction *isect,
                    const SceneObject **object) const;
     bool IntersectP(const Ray &ray) const;
@@ -45,7 +44,6 @@ class RenderScene {
     std::vector<SceneObject> objects;
     std::deque<Transform> transforms;
 };
-// Renderer Declarations
 enum class Falloff { None, InverseDistance, InverseSquare };
 
 inline Float FalloffFactor(Falloff falloff, Float t) {
@@ -55,7 +53,6 @@ inline Float FalloffFactor(Falloff falloff, Float t) {
     default: return 1;
     }
 }
-// Renderer Declarations
 struct PointLight {
     Point3f pLight;
     RGB I;
@@ -75,7 +72,6 @@ struct RenderOptions {
 Image Render(const RenderScene &scene, const PinholeCamera &camera,
              const RenderOptions &options,
              std::vector<Float> *depth = nullptr);
-// Renderer Declarations
 RGB Shade(const Ray &ray, const SurfaceInteraction &isect,
           const SceneObject &object, const RenderScene &scene,
           const PinholeCamera &camera, const RenderOptions &options);

@@ -34,12 +34,10 @@ Disk::Disk(const Transform *ObjectToWorld, const Transform *WorldToObject,
     if (!(this->phiMax > 0))
         throw std::invalid_argument("Disk: phiMax must be positive");
 }
-// Disk Method Definitions
 Bounds3f Disk::ObjectBound() const {
     return Bounds3f(Point3f(-radius, -radius, height),
                     Point3f(radius, radius, height));
 }
-// Disk Method Definitions
 bool Disk::Intersect(const Ray &r, Float *tHit, SurfaceInteraction *isect,
                      bool /*testAlphaTexture*/) const {
     // Transform Ray to object space
@@ -85,7 +83,6 @@ bool Disk::Intersect(const Ray &r, Float *tHit, SurfaceInteraction *isect,
     *tHit = (Float)tShapeHit;
     return true;
 }
-// Disk Method Definitions
 bool Disk::IntersectP(const Ray &r, bool /*testAlphaTexture*/) const {
     // Transform Ray to object space
     Vector3f oErr, dErr;
@@ -107,7 +104,6 @@ bool Disk::IntersectP(const Ray &r, bool /*testAlphaTexture*/) const {
     if (phi > phiMax) return false;
     return true;
 }
-// Disk Method Definitions
 Float Disk::Area() const {
     // Compute the area of the partial ring
     return Float(0.5) * phiMax * (radius - innerRadius) *

@@ -12,14 +12,11 @@ class Disk : public Shape {
     Disk(const Transform *ObjectToWorld, const Transform *WorldToObject,
          bool reverseOrientation, Float height, Float radius, Float innerRadius,
          Float phiMax);
-    // Disk Public Methods
     Bounds3f ObjectBound() const override;
-    // Disk Public Methods
     bool Intersect(const Ray &ray, Float *tHit, SurfaceInteraction *isect,
                    bool testAlphaTexture = true) const override;
     bool IntersectP(const Ray &ray,
                     bool testAlphaTexture = true) const override;
-    // Disk Public Methods
     Float Area() const override;
   private:
     // Disk Private Data

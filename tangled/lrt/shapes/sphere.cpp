@@ -34,12 +34,10 @@ Sphere::Sphere(const Transform *ObjectToWorld, const Transform *WorldToObject,
     if (!(this->phiMax > 0))
         throw std::invalid_argument("Sphere: phiMax must be positive");
 }
-// Sphere Method Definitions
 Bounds3f Sphere::ObjectBound() const {
     return Bounds3f(Point3f(-radius, -radius, zMin),
                     Point3f(radius, radius, zMax));
 }
-// Sphere Method Definitions
 bool Sphere::Intersect(const Ray &r, Float *tHit, SurfaceInteraction *isect,
                        bool /*testAlphaTexture*/) const {
     Float phi;
@@ -136,7 +134,6 @@ bool Sphere::Intersect(const Ray &r, Float *tHit, SurfaceInteraction *isect,
     *tHit = (Float)tShapeHit;
     return true;
 }
-// Sphere Method Definitions
 bool Sphere::IntersectP(const Ray &r, bool /*testAlphaTexture*/) const {
     Float phi;
     Point3f pHit;
@@ -191,7 +188,6 @@ bool Sphere::IntersectP(const Ray &r, bool /*testAlphaTexture*/) const {
     }
     return true;
 }
-// Sphere Method Definitions
 Float Sphere::Area() const {
     // Compute the area of the partial sphere
     return phiMax * radius * (zMax - zMin);

@@ -12,15 +12,11 @@ class Sphere : public Shape {
     Sphere(const Transform *ObjectToWorld, const Transform *WorldToObject,
            bool reverseOrientation, Float radius, Float zMin, Float zMax,
            Float phiMax);
-    // Sphere Public Methods
     Bounds3f ObjectBound() const override;
-    // Sphere Public Methods
     bool Intersect(const Ray &ray, Float *tHit, SurfaceInteraction *isect,
                    bool testAlphaTexture = true) const override;
-    // Sphere Public Methods
     bool IntersectP(const Ray &ray,
                     bool testAlphaTexture = true) const override;
-    // Sphere Public Methods
     Float Area() const override;
   private:
     // Sphere Private Methods

@@ -81,7 +81,6 @@ Bounds3f Triangle::WorldBound() const {
     const Point3f &p2 = mesh->p[v[2]];
     return Union(Bounds3f(p0, p1), p2);
 }
-// Triangle Method Definitions
 bool Triangle::IntersectP(const Ray &ray, bool) const {
     // Get triangle vertices in p0, p1, and p2
     const Point3f &p0 = mesh->p[v[0]];
@@ -163,7 +162,6 @@ bool Triangle::IntersectP(const Ray &ray, bool) const {
     if (ng.LengthSquared() == 0) return false;
     return true;
 }
-// Triangle Method Definitions
 bool Triangle::Intersect(const Ray &ray, Float *tHit,
                          SurfaceInteraction *isect, bool) const {
     // Get triangle vertices in p0, p1, and p2
@@ -326,7 +324,6 @@ bool Triangle::Intersect(const Ray &ray, Float *tHit,
     *tHit = t;
     return true;
 }
-// Triangle Method Definitions
 Float Triangle::Area() const {
     // Get triangle vertices in p0, p1, and p2
     const Point3f &p0 = mesh->p[v[0]];
@@ -341,7 +338,6 @@ Float Triangle::Area() const {
            cz = ax * by - ay * bx;
     return Float(0.5 * std::sqrt(cx * cx + cy * cy + cz * cz));
 }
-// Triangle Method Definitions
 bool Triangle::CompleteIntersection(const Ray &ray, const Point3f &p0,
                                     const Point3f &p1, const Point3f &p2,
                                     Float e0, Float e1, Float e2,

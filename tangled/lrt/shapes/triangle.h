@@ -40,27 +40,21 @@ class Triangle : public Shape {
         faceIndex = mesh->faceIndices.empty() ? 0
                                               : mesh->faceIndices[triNumber];
     }
-    // Triangle Public Methods
     Bounds3f ObjectBound() const override;
     Bounds3f WorldBound() const override;
-    // Triangle Public Methods
     static void GetDefaultUVs(Point2f uv[3]) {
         uv[0] = Point2f(0, 0);
         uv[1] = Point2f(1, 0);
         uv[2] = Point2f(1, 1);
     }
-    // Triangle Public Methods
     bool Intersect(const Ray &ray, Float *tHit, SurfaceInteraction *isect,
                    bool testAlphaTexture = true) const override;
     bool IntersectP(const Ray &ray,
                     bool testAlphaTexture = true) const override;
-    // Triangle Public Methods
     bool FlipsNormal() const {
         return reverseOrientation ^ transformSwapsHandedness;
     }
-    // Triangle Public Methods
     Float Area() const override;
-    // Triangle Public Methods
     void GetVertices(Point3f *q0, Point3f *q1, Point3f *q2) const {
         // Get triangle vertices in p0, p1, and p2
         const Point3f &p0 = mesh->p[v[0]];
@@ -74,7 +68,6 @@ class Triangle : public Shape {
                               const Point3f &p1, const Point3f &p2, Float e0,
                               Float e1, Float e2, Float invDet,
                               SurfaceInteraction *isect) const;
-    // Triangle Public Methods
     int FaceIndex() const { return faceIndex; }
     bool HasVertexAttributes() const {
         return !mesh->n.empty() || !mesh->s.empty() || !mesh->uv.empty();

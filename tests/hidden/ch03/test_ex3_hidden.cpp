@@ -16,7 +16,7 @@
 
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/disk.h"
-#include "lrt/core/plyreader.h"
+#include "lrt/shapes/plyreader.h"
 
 #include "ch03/exercise_calls.h"
 

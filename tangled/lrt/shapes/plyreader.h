@@ -1,4 +1,4 @@
-// lrt/core/plyreader.h: tangled from chapters/03-shapes.md. Edit the chapter, not this file.
+// lrt/shapes/plyreader.h: tangled from chapters/03-shapes.md. Edit the chapter, not this file.
 #pragma once
 
 #include "lrt/core/geometry.h"

@@ -1,5 +1,5 @@
-// lrt/core/plyreader.cpp: tangled from chapters/03-shapes.md. Edit the chapter, not this file.
-#include "lrt/core/plyreader.h"
+// lrt/shapes/plyreader.cpp: tangled from chapters/03-shapes.md. Edit the chapter, not this file.
+#include "lrt/shapes/plyreader.h"
 #include "lrt/shapes/triangle.h"
 
 #include <algorithm>
@@ -37,7 +37,6 @@ struct PlyElement {
 };
 
 enum class PlyFormat { Ascii, BinaryLittleEndian, BinaryBigEndian };
-// PLY Reader Declarations
 enum PlyRole {
     NoRole = -1, RoleX, RoleY, RoleZ, RoleNX, RoleNY, RoleNZ, RoleU, RoleV,
     NumRoles
@@ -78,7 +77,6 @@ size_t PlyTypeSize(PlyType type) {
 bool IsIntegerType(PlyType type) {
     return type != PlyType::Float32 && type != PlyType::Float64;
 }
-// PLY Reader Utility Functions
 bool HostIsLittleEndian() {
     const uint16_t one = 1;
     unsigned char first;
@@ -92,7 +90,6 @@ double Decode(const unsigned char *bytes) {
     std::memcpy(&value, bytes, sizeof(T));
     return double(value);
 }
-// PLY Reader Utility Functions
 bool FitsType(double value, PlyType type) {
     switch (type) {
     case PlyType::Int8: return value >= -128 && value <= 127;
@@ -128,7 +125,6 @@ class PlyParser {
             where += element->name + " " + std::to_string(instance) + ": ";
         throw std::runtime_error(where + message);
     }
-    // PlyParser Private Methods
     std::string NextLine() {
         if (pos >= data.size())
             Fail("unexpected end of file in the header (no end_header line)");
@@ -148,7 +144,6 @@ class PlyParser {
         while (in >> word) words.push_back(word);
         return words;
     }
-    // PlyParser Private Methods
     void ParseHeader() {
         if (data.empty()) Fail("the file is empty", false);
         if (NextLine() != "ply") Fail("not a PLY file (no \"ply\" line)");
@@ -215,7 +210,6 @@ class PlyParser {
             }
         }
     }
-    // PlyParser Private Methods
     int FindElement(const std::string &name) const {
         for (size_t i = 0; i < elements.size(); ++i)
             if (elements[i].name == name) return int(i);
@@ -227,12 +221,10 @@ class PlyParser {
             if (e.properties[i].name == name) return int(i);
         return -1;
     }
-    // PlyParser Private Methods
     double ReadValue(PlyType type) {
         return format == PlyFormat::Ascii ? ReadAsciiValue(type)
                                           : ReadBinaryValue(type);
     }
-    // PlyParser Private Methods
     double ReadBinaryValue(PlyType type) {
         size_t size = PlyTypeSize(type);
         if (data.size() - pos < size) Fail("unexpected end of file");
@@ -254,7 +246,6 @@ class PlyParser {
         }
         return 0;
     }
-    // PlyParser Private Methods
     std::string NextWord() {
         while (pos < data.size() &&
                (data[pos] == ' ' || data[pos] == '\t' || data[pos] == '\r'))
@@ -264,7 +255,6 @@ class PlyParser {
             ++pos;
         return data.substr(begin, pos - begin);
     }
-    // PlyParser Private Methods
     double ReadAsciiValue(PlyType type) {
         std::string word = NextWord();
         if (word.empty()) Fail("too few values on the line");
@@ -284,7 +274,6 @@ class PlyParser {
             Fail("\"" + word + "\" is not a number");
         return type == PlyType::Float32 ? double(float(value)) : value;
     }
-    // PlyParser Private Methods
     void BeginInstance() {
         if (format != PlyFormat::Ascii) return;
         for (;;) {
@@ -464,7 +453,6 @@ PlyMesh ReadPly(const std::string &filename) {
                                  "\": " + std::strerror(error));
     return PlyParser(filename, std::move(data)).Parse();
 }
-// PLY Function Definitions
 std::vector<std::shared_ptr<Shape>> CreatePLYMesh(
     const Transform *ObjectToWorld, const Transform *WorldToObject,
     bool reverseOrientation, const std::string &filename) {

@@ -120,7 +120,8 @@ compile_commands.json: tangle
 book: $(BUILD)/book.pdf
 
 $(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/book/weave.sh tools/book/weave.lua \
-                   tools/book/fragments.lua tools/book/exercises.lua tools/book/preamble.tex \
+                   tools/book/fragments.lua tools/noweb/chunks.py tools/book/exercises.lua \
+                   tools/book/preamble.tex \
                    tools/book/tikz-preamble.tex \
                    tools/book/highlight.theme tools/book/layout_check.py \
                    $(wildcard figures/*) | $(LINTED)

@@ -13,7 +13,8 @@ HTML_CACHE ?= $(BUILD)/html-cache
 html: $(HTML_OUT)/index.html
 
 $(HTML_OUT)/index.html: book.md $(wildcard references.bib) $(CHAPTERS) tools/book/html_site.py \
-                        tools/book/html.lua tools/book/fragments.lua tools/book/exercises.lua \
+                        tools/book/html.lua tools/book/fragments.lua tools/noweb/chunks.py \
+                        tools/book/exercises.lua \
                         tools/book/tikz-preamble.tex $(wildcard tools/book/web/*) \
                         $(wildcard figures/*) | $(LINTED)
 	python3 tools/book/html_site.py --out $(HTML_OUT) --cache $(HTML_CACHE) book.md $(CHAPTERS)

@@ -8,7 +8,8 @@
 The rules come from what goes wrong silently otherwise (see DESIGN.md, section
 3): notangle drops a whole file on an unescaped <<, reads `a << 2 >> 1` as a
 fragment use, turns a missing @ into code that swallows the following prose,
-and only warns about undefined fragments.
+and only warns about undefined fragments. The chunks are read by
+tools/noweb/chunks.py, as the exercise tools and the weave read them.
 """
 import os
 import re

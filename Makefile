@@ -75,7 +75,8 @@ LINTED := $(BUILD)/linted.stamp
 lint:
 	$(LINT)
 
-$(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/noweb/lint.py tools/exercises/markup.py
+$(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/noweb/lint.py tools/exercises/markup.py \
+           tools/noweb/chunks.py $(wildcard tools/exercises/*.py)
 	$(call say,LINT,the chapters and the names of their exercise tests)
 	$(Q)$(LINT)
 	@touch $@

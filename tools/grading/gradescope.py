@@ -32,7 +32,9 @@ from tools.exercises import course  # noqa: E402
 
 TOOLS = ['__init__.py', 'deps.sh', 'grading/__init__.py', 'grading/grade.py', 'grading/build.py',
          'grading/sandbox.py', 'grading/compile_wall.py', 'exercises/__init__.py',
-         'exercises/markup.py', 'exercises/course.py', 'noweb/__init__.py', 'noweb/tangle.py',
+         'exercises/markup.py', 'exercises/regions.py', 'exercises/attributes.py',
+         'exercises/book.py', 'exercises/suites.py', 'exercises/student.py',
+         'exercises/course.py', 'noweb/__init__.py', 'noweb/tangle.py', 'noweb/chunks.py',
          'noweb/markup_filter.py', 'noweb/fragment_comments.py']
 SCRIPTS = ['setup.sh', 'run_autograder']
 PLAN_NAME = 'course.toml'

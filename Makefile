@@ -86,7 +86,8 @@ LINTED := $(BUILD)/linted.stamp
 lint:
 	$(LINT)
 
-$(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/noweb/lint.py tools/exercises/markup.py
+$(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/noweb/lint.py tools/exercises/markup.py \
+           tools/noweb/chunks.py $(wildcard tools/exercises/*.py)
 	$(call say,LINT,the chapters and the names of their exercise tests)
 	$(Q)$(LINT)
 	@touch $@
@@ -131,8 +132,9 @@ compile_commands.json: tangle
 book: $(BUILD)/book.pdf
 
 $(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/book/weave.sh tools/book/weave.lua \
-                   tools/book/fragments.lua tools/book/exercises.lua tools/book/edition.lua \
-                   tools/book/indexes.lua tools/book/latex_text.lua tools/book/preamble.tex \
+                   tools/book/fragments.lua tools/noweb/chunks.py tools/book/exercises.lua \
+                   tools/book/edition.lua tools/book/indexes.lua tools/book/latex_text.lua \
+                   tools/book/preamble.tex \
                    tools/book/tikz-preamble.tex \
                    tools/book/highlight.theme tools/book/layout_check.py \
                    $(wildcard figures/*) | $(LINTED)

@@ -64,6 +64,12 @@ class LintTest(unittest.TestCase):
         self.assertLintError(['missing-at.md'], 'missing-at.md:4',
                              ['<<lrt/broken.h>>', 'no closing @', 'line 6'])
 
+    def test_definition_inside_a_chunk_ends_it(self):
+        # As noweb reads it: <<Helper>>= starts a chunk, so <<lrt/nested.h>>
+        # never meets its @.
+        self.assertLintError(['definition-in-chunk.md'], 'definition-in-chunk.md:4',
+                             ['<<lrt/nested.h>>', 'never closed by @', 'line 6'])
+
     def test_tab(self):
         self.assertLintError(['tab.md'], 'tab.md:6', ['tab character'])
 
@@ -108,6 +114,38 @@ class LintTest(unittest.TestCase):
     def test_missing_chapter_file(self):
         self.assertLintError(['no-such-chapter.md'], 'no-such-chapter.md:0',
                              ['cannot read chapter'])
+
+
+class ChunksTest(unittest.TestCase):
+    """tools/noweb/chunks.py, the one reading of the chunk grammar: what it
+    hands the weave's Lua filters is what it read, byte for byte."""
+
+    def test_the_weave_loads_the_chunks_as_read(self):
+        tmp = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, tmp)
+        chapter = os.path.join(tmp, '01-quotes.md')
+        code = 'auto s = "a\\"b\\\\"; // \u00e9 \x01 (a @<< 2) >> 1'
+        with open(chapter, 'w', encoding='utf-8') as f:
+            f.write('# Q\n\n```cpp\n<<lrt/q.h>>=\n%s\n    <<Part>>\n@ %%def s\n```\n\n'
+                    '```cpp\n<<Part>>=\nint part;\n<<Unclosed>>=\n' % code)
+        result = run(['python3', os.path.join(TOOLS, 'noweb', 'chunks.py'), '--lua',
+                      chapter])
+        self.assertEqual(result.returncode, 0, result.stderr)
+        table = os.path.join(tmp, 'chunks.lua')
+        with open(table, 'w', encoding='utf-8') as f:
+            f.write(result.stdout)
+        # texlua (Lua 5.3, as in pandoc) loads the table as the weave does.
+        reader = os.path.join(tmp, 'show.lua')
+        with open(reader, 'w') as f:
+            f.write('for _, c in ipairs(dofile(arg[1]).chunks) do io.write(c.name, "|", '
+                    'c.line, "|", c.ended_by, "|", table.concat(c.lines, "/"), "|", '
+                    'table.concat(c.defs, ","), "|", #c.uses, "\\n") end\n')
+        shown = run(['texlua', reader, table])
+        self.assertEqual(shown.returncode, 0, shown.stderr)
+        self.assertEqual(shown.stdout.split('\n'), [
+            'lrt/q.h|4|@|%s/    <<Part>>|s|1' % code,
+            'Part|11|definition|int part;||0',
+            'Unclosed|13|eof|||0', ''])
 
 
 class TangleTest(unittest.TestCase):

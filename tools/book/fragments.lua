@@ -5,8 +5,10 @@ it as well and typeset the same facts as HTML.
 
   local book = require('fragments').read(doc, fail)
 
-reads every ```cpp block that starts with `<<Name>>=` as a noweb chunk,
-numbers the chunks per chapter (2.7 is chapter 2's seventh), and records:
+takes the book's noweb chunks from tools/noweb/chunks.py (the one reading of
+the chunk grammar, which the lint and the exercise tools share), finds each
+in the ```cpp code block that holds it, numbers the chunks per chapter (2.7 is
+chapter 2's seventh), and records:
 
   book.chunks        in book order: {name, number, label, chapter, lines, defs}
   book.by_name       name -> the chunks that define it, in order
@@ -18,14 +20,19 @@ numbers the chunks per chapter (2.7 is chapter 2's seventh), and records:
 with functions over them (neighbours, shown_lines, identifier_uses, ...), and
 what both editions do alike: highlighting code with its fragment uses, finding
 numbered equations, figures, examples of fragments and cross-references.
-It checks its own reading of the chunks against noweb's markup: if the two
-disagree, the book would show code that is not the code that is compiled.
+It checks that reading against pandoc's code blocks and against noweb's
+markup: if they disagree, the book would show code that is not the code that
+is compiled.
 ]]
 
 local M = {}
 
-M.CHUNK_HEADER = '^<<(.+)>>=%s*$'
-M.USE_LINE = '^(%s*)<<(.-)>>%s*$'
+-- tools/noweb/chunks.py, beside this file's folder.
+local CHUNKS_PY = (debug.getinfo(1, 'S').source:match('^@(.*)[/\\]') or '.')
+                  .. '/../noweb/chunks.py'
+-- What chunks.py read: the header line of each chunk (is_chunk_block asks
+-- it), and each line of code that is a fragment use -> {indent, name}.
+local headers, use_lines = {}, {}
 -- Lua patterns have no alternation (a|b): shown_lines() checks the two words.
 local EXERCISE_MARKER = '^%s*// (%u+) (%u+)%s*$'
 
@@ -39,8 +46,17 @@ function M.split_lines(text)
   return lines
 end
 
+-- A code block that holds a chunk: its first line is a chunk's header as
+-- chunks.py read it (so this answers after read()).
 function M.is_chunk_block(block)
-  return block.t == 'CodeBlock' and block.text:match('^<<.->>=') ~= nil
+  return block.t == 'CodeBlock' and headers[block.text:match('^[^\n]*')] ~= nil
+end
+
+-- The indent and the name of the fragment that a line of code uses, or nil
+-- where the line is not a use.
+function M.use_in(line)
+  local use = use_lines[line]
+  if use then return use.indent, use.name end
 end
 
 function M.sorted_keys(t)
@@ -57,21 +73,40 @@ end
 -------------------------------------------------------------------------------
 -- Reading the chunks
 
-local function parse_chunk(code, fail)
-  local lines = M.split_lines(code)
-  local name = lines[1]:match(M.CHUNK_HEADER)
-  if not name then return nil end
-  local last = lines[#lines]
-  if not last:match('^@%s*$') and not last:match('^@ %%def ') then
-    fail('chunk <<' .. name .. '>> does not end with @ (run make lint)')
+-- The chunks of the input files, as tools/noweb/chunks.py reads them:
+-- {name, file, line, text, lines, ended_by, defs, uses = {{line, name}}}.
+local function read_chunks(files, fail)
+  local args = {CHUNKS_PY, '--lua'}
+  for _, file in ipairs(files) do args[#args + 1] = file end
+  local ok, out = pcall(pandoc.pipe, 'python3', args, '')
+  if not ok then fail('tools/noweb/chunks.py failed: ' .. tostring(out)) end
+  local index, err = load(out, 'chunks.py', 't', {})
+  if not index then fail('cannot load what tools/noweb/chunks.py wrote: ' .. err) end
+  local chunks = index().chunks
+  headers, use_lines = {}, {}
+  for _, chunk in ipairs(chunks) do
+    headers[chunk.text:match('^[^\n]*')] = true
+    for _, use in ipairs(chunk.uses) do
+      local line = chunk.lines[use.line - chunk.line]
+      use_lines[line] = {indent = line:match('^%s*'), name = use.name}
+    end
   end
-  local body = {}
-  for i = 2, #lines - 1 do body[#body + 1] = lines[i] end
-  local defs = {}
-  for id in (last:match('^@ %%def (.*)$') or ''):gmatch('%S+') do
-    defs[#defs + 1] = id
+  return chunks
+end
+
+-- The chunk that chunks.py read for the next code block that holds one.
+local function take_chunk(block, chunks, count, fail)
+  local read = chunks[count]
+  local where = read and (read.file .. ':' .. read.line) or 'the end of the book'
+  if not read or read.text ~= block.text then
+    fail(string.format('chunk %d: noweb reads <<%s>> at %s (tools/noweb/chunks.py) but '
+      .. 'the weave reads the code block\n%s\nis a chunk outside a ```cpp fence, in a '
+      .. 'list, or in a quote?', count, read and read.name or 'nothing', where, block.text))
   end
-  return {name = name, lines = body, defs = defs}
+  if read.ended_by ~= '@' then
+    fail(where .. ': chunk <<' .. read.name .. '>> does not end with @ (run make lint)')
+  end
+  return {name = read.name, lines = read.lines, defs = read.defs, uses = read.uses}
 end
 
 local function label_kind(label)
@@ -114,6 +149,7 @@ Book.__index = Book
 -- Walks the document once (in document order, into divs too), numbering
 -- chunks by chapter and collecting the labels that references may target.
 function M.read(doc, fail)
+  local read = read_chunks(PANDOC_STATE.input_files, fail)
   local book = setmetatable({chunks = {}, by_name = {}, uses_of = {}, ids = {},
                              identifiers = {}, labels = {}, missing = {}, fail = fail},
                             Book)
@@ -142,7 +178,7 @@ function M.read(doc, fail)
     end,
     CodeBlock = function(block)
       if not M.is_chunk_block(block) then return end
-      local chunk = parse_chunk(block.text, fail)
+      local chunk = take_chunk(block, read, #book.chunks + 1, fail)
       if chapter == 0 then
         fail('chunk <<' .. chunk.name .. '>> stands before the first chapter')
       end
@@ -177,17 +213,21 @@ function M.read(doc, fail)
       if label then book.labels[label] = {kind = 'Equation', chapter = chapter} end
     end,
   })
+  if #read > #book.chunks then
+    local missed = read[#book.chunks + 1]
+    fail(string.format('chunk %d: noweb reads <<%s>> at %s:%d (tools/noweb/chunks.py) but '
+      .. 'the weave finds no code block that holds it; is a chunk outside a ```cpp fence, '
+      .. 'in a list, or in a quote?', #book.chunks + 1, missed.name, missed.file, missed.line))
+  end
   for _, chunk in ipairs(book.chunks) do
-    for _, line in ipairs(chunk.lines) do
-      local _, used = line:match(M.USE_LINE)
-      if used then
-        if not book.by_name[used] then
-          fail('chunk <<' .. chunk.name .. '>> ' .. chunk.number ..
-               ' uses undefined fragment <<' .. used .. '>>')
-        end
-        book.uses_of[used] = book.uses_of[used] or {}
-        table.insert(book.uses_of[used], chunk)
+    for _, use in ipairs(chunk.uses) do
+      local used = use.name
+      if not book.by_name[used] then
+        fail('chunk <<' .. chunk.name .. '>> ' .. chunk.number ..
+             ' uses undefined fragment <<' .. used .. '>>')
       end
+      book.uses_of[used] = book.uses_of[used] or {}
+      table.insert(book.uses_of[used], chunk)
     end
   end
   return book
@@ -266,7 +306,7 @@ end
 function M.highlight(lines, format, use)
   local placeholders, code = {}, {}
   for i, line in ipairs(lines) do
-    local indent, used = line:match(M.USE_LINE)
+    local indent, used = M.use_in(line)
     if used then
       placeholders[#placeholders + 1] = used
       code[i] = indent .. 'LRTFRAGMENTUSE' .. #placeholders .. 'X'
@@ -355,7 +395,7 @@ function Book:identifier_uses(id)
     for _, chunk in ipairs(self.chunks) do
       local words = {}
       for _, line in ipairs(chunk.lines) do
-        if not line:match(M.USE_LINE) then
+        if not M.use_in(line) then
           for word in line:gmatch('[%w_]+') do words[word] = true end
         end
       end

@@ -52,10 +52,10 @@ CXX = compile_flags.value('CXX')
 JUDGE_CXXFLAGS = compile_flags.words('JUDGE_CXXFLAGS')
 WORKER_CXXFLAGS = compile_flags.words('WORKER_CXXFLAGS')
 # The tools that shape a tangle (tools/noweb/tangle.py runs the two filters, and
-# markup_filter.py follows tools/exercises/markup.py's markers): inputs of every
-# build from tangled code, so part of its key.
+# markup_filter.py follows tools/exercises/regions.py's markers in the chunks
+# of tools/noweb/chunks.py): inputs of every build from tangled code, so part of its key.
 TANGLE_TOOLS = ['tools/noweb/tangle.py', 'tools/noweb/markup_filter.py', 'tools/noweb/fragment_comments.py',
-                'tools/exercises/markup.py']
+                'tools/exercises/markup.py', 'tools/exercises/regions.py', 'tools/noweb/chunks.py']
 # MB of one file that a worker's build may write: the book's workers are
 # about 3 MB, their objects less.
 BUILD_FILE_MB = 64

@@ -57,7 +57,8 @@ TEST_FLAGS = -Itests -include $(PCH_INCLUDE) -Winvalid-pch
 # includes them).
 tangle: $(DIR)/tangled.stamp
 $(DIR)/tangled.stamp: $(ASOF_CHAPTERS) $(DIR)/chapters.list tools/noweb/tangle.py \
-                      tools/noweb/markup_filter.py tools/noweb/fragment_comments.py
+                      tools/noweb/markup_filter.py tools/noweb/fragment_comments.py \
+                      tools/exercises/regions.py tools/noweb/chunks.py
 	@mkdir -p $(SRC)
 	$(call say,TANGLE,$(SRC) (the code $(AS_OF)))
 	$(Q)python3 tools/noweb/tangle.py --line-directives --out $(SRC) $(ASOF_CHAPTERS)

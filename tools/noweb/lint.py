@@ -8,27 +8,22 @@
 The rules (the README's "Writing a chapter") come from what goes wrong
 silently otherwise: notangle drops a whole file on an unescaped <<, reads `a << 2 >> 1` as a
 fragment use, turns a missing @ into code that swallows the following prose,
-and only warns about undefined fragments.
+and only warns about undefined fragments. The chunks are read by
+tools/noweb/chunks.py, as the exercise tools and the weave read them.
 """
 import os
 import re
 import sys
 from collections import defaultdict
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+from tools.noweb import chunks  # noqa: E402
+from tools.noweb.chunks import FENCE, UNESCAPED_OPEN, USE_LINE  # noqa: E402
+
 MAX_CODE_COLUMNS = 80
-FENCE = re.compile(r'^(```|~~~)')
-DEFINITION = re.compile(r'^<<(.+)>>=\s*$')
-USE_LINE = re.compile(r'^\s*<<(.+?)>>\s*$')
-UNESCAPED_OPEN = re.compile(r'(?<!@)<<')
-CHUNK_END = re.compile(r'^@(\s|$)')
 ROOT_NAME = re.compile(r'^[\w.+-]+(/[\w.+-]+)*\.\w+$')
-
-
-class Chunk:
-    def __init__(self, name, path, line):
-        self.name, self.path, self.line = name, path, line
-        self.uses = []  # (line, name)
-        self.ended = False
+TAB = ('tab character: notangle expands tabs to 8 columns and pandoc to 4; '
+       'use spaces')
 
 
 class Lint:
@@ -38,78 +33,83 @@ class Lint:
     def error(self, path, line, message):
         self.errors.append('%s:%d: %s' % (path, line, message))
 
+    def check_tab(self, path, number, text):
+        if '\t' in text:
+            self.error(path, number, TAB)
+
     def parse(self, path):
-        """Returns the chunks of one chapter, reporting format errors."""
+        """Returns the chunks of one chapter, reporting format errors. The
+        chapter is read as pandoc also reads it (a fence ends a chunk), since
+        the book's format is what both tools must agree on."""
         try:
-            with open(path, encoding='utf-8') as f:
-                lines = f.read().split('\n')
+            lines = chunks.read_lines(path)
         except (OSError, UnicodeDecodeError) as e:
             self.error(path, 0, 'cannot read chapter: %s' % e)
             return []
-        chunks = []
-        chunk = None          # the code chunk we are in, if any
+        found = []
         fence_open = None     # line of an open fence in documentation
-        chunk_fence_close = 0 # line of the fence that closes the last chunk
-        for number, text in enumerate(lines, 1):
-            if '\t' in text:
-                self.error(path, number, 'tab character: notangle expands tabs to 8 '
-                           'columns and pandoc to 4; use spaces')
-            if chunk is not None:
-                if CHUNK_END.match(text):
-                    chunk.ended = True
-                    chunk_fence_close = number + 1
-                    following = lines[number] if number < len(lines) else ''
-                    if not FENCE.match(following):
-                        self.error(path, number + 1, 'the fence must close right after '
-                                   'the @ that ends <<%s>> (one chunk per fence)'
-                                   % chunk.name)
-                    chunk = None
-                    fence_open = None
-                    continue
-                if FENCE.match(text):
-                    self.error(path, chunk.line, 'chunk <<%s>> has no closing @ before '
-                               'the fence at line %d' % (chunk.name, number))
-                    chunk = None
-                    fence_open = None
-                    continue
-                self.check_code_line(path, number, text, chunk)
+        fence_taken = 0       # line of a fence that closes a chunk, not documentation's
+        for item in chunks.parse(lines, path, fenced=True):
+            if isinstance(item, chunks.Chunk):
+                fence_taken = self.check_chunk(path, lines, item, fence_open) or fence_taken
+                found.append(item)
+                fence_open = None
                 continue
-            definition = DEFINITION.match(text)
-            if definition:
-                previous = lines[number - 2] if number >= 2 else ''
-                if fence_open is None or fence_open != number - 1 or \
-                        not previous.startswith('```cpp'):
-                    self.error(path, number, 'chunk <<%s>> must follow a ```cpp fence '
-                               'line directly' % definition.group(1))
-                chunk = Chunk(definition.group(1), path, number)
-                chunks.append(chunk)
-                continue
-            if FENCE.match(text) and number != chunk_fence_close:
+            number, text = item
+            self.check_tab(path, number, text)
+            if FENCE.match(text) and number != fence_taken:
                 fence_open = number if fence_open is None else None
                 following = lines[number] if number < len(lines) else ''
                 if fence_open and text.strip() == '```cpp' and \
-                        not DEFINITION.match(following):
+                        not chunks.DEFINITION.match(following):
                     self.error(path, number, 'a ```cpp block must hold a chunk '
                                '(<<Name>>= on its next line); show code that is not '
                                'part of the library in a ```c++ block')
             if UNESCAPED_OPEN.search(text):
                 self.error(path, number, 'unescaped << outside code: notangle reads it '
                            'as a fragment use; write @<<')
-        if chunk is not None:
-            self.error(path, chunk.line, 'chunk <<%s>> is never closed by @' % chunk.name)
-        return chunks
+        return found
 
-    def check_code_line(self, path, number, text, chunk):
+    def check_chunk(self, path, lines, chunk, fence_open):
+        """Checks one chunk in its fence; returns the line of the fence that
+        closes it, which is not documentation's."""
+        number = chunk.line
+        self.check_tab(path, number, lines[number - 1])
+        previous = lines[number - 2] if number >= 2 else ''
+        if fence_open is None or fence_open != number - 1 or \
+                not previous.startswith('```cpp'):
+            self.error(path, number, 'chunk <<%s>> must follow a ```cpp fence '
+                       'line directly' % chunk.name)
+        for line, text in chunk.numbered():
+            self.check_tab(path, line, text)
+            self.check_code_line(path, line, text)
+        after = chunk.line + len(chunk.body) + 1   # the @, the fence or the next chunk
+        if chunk.ended_by == '@':
+            self.check_tab(path, after, lines[after - 1])
+            following = lines[after] if after < len(lines) else ''
+            if not FENCE.match(following):
+                self.error(path, after + 1, 'the fence must close right after '
+                           'the @ that ends <<%s>> (one chunk per fence)' % chunk.name)
+            return after + 1
+        if chunk.ended_by == 'fence':
+            self.error(path, chunk.line, 'chunk <<%s>> has no closing @ before '
+                       'the fence at line %d' % (chunk.name, after))
+            return after
+        if chunk.ended_by == 'definition':
+            self.error(path, chunk.line, 'chunk <<%s>> is never closed by @: noweb ends '
+                       'it where the next chunk starts, at line %d' % (chunk.name, after))
+        else:
+            self.error(path, chunk.line, 'chunk <<%s>> is never closed by @' % chunk.name)
+        return None
+
+    def check_code_line(self, path, number, text):
         shown = text.replace('@<<', '<<')
         if len(shown) > MAX_CODE_COLUMNS:
             self.error(path, number, 'code line has %d columns; the book fits %d'
                        % (len(shown), MAX_CODE_COLUMNS))
-        if not UNESCAPED_OPEN.search(text):
+        if not UNESCAPED_OPEN.search(text) or USE_LINE.match(text):
             return
-        use = USE_LINE.match(text)
-        if use:
-            chunk.uses.append((number, use.group(1)))
-        elif '>>' in text[UNESCAPED_OPEN.search(text).start():]:
+        if '>>' in text[UNESCAPED_OPEN.search(text).start():]:
             self.error(path, number, 'noweb reads << ... >> on one line as a fragment '
                        'use: write @<< in code, and put a fragment use on its own line')
 

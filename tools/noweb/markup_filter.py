@@ -6,7 +6,7 @@ as tools/noweb/tangle.py does). In every code chunk it drops the marker lines
 `// BEGIN SOLUTION`, `// END SOLUTION` and each `// BEGIN STUB` ... `// END STUB`
 block, so that the code compiled and the readable tangle in tangled/ hold the
 reference code and nothing else (docs/exercises.md). The student edition needs
-no filter of its own: its chapters already hold the stubs (tools/exercises/markup.py).
+no filter of its own: its chapters already hold the stubs (tools/exercises/student.py).
 
 After dropped lines it tells the tangler where the next line came from
 (`@line`), so that `#line` directives keep pointing at the chapter's lines.
@@ -16,7 +16,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-from tools.exercises.markup import MarkupError, solution_lines_to_keep  # noqa: E402
+from tools.exercises.regions import MarkupError, solution_lines_to_keep  # noqa: E402
 
 
 def chunk_lines(records):

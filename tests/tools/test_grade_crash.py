@@ -7,6 +7,9 @@ nothing of it outlives the grading (docs/grading.md).
   through.
 - One whose ex-5.9 is the book's code but starts a setsid() daemon in each
   of its workers must score full points, and no daemon may be left.
+- One whose ex-5.9 spins for ever, graded with less time for the exercise
+  than for one call, so that the grader kills the judge while a worker
+  spins: the worker must end with its judge, not run on as an orphan.
 
 The grader runs here under a parent that never reaps orphans, as in a
 container whose first process is no init: whatever the sandboxes leave
@@ -87,7 +90,8 @@ class CrashInOneExerciseTest(unittest.TestCase):
         cls.crashing = owner[tg.F9]
         cls.tmp = tempfile.mkdtemp(prefix='lrt-grade-crash-')
         book_chapter = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
-        for name, code in (('exits', 'std::exit(0);'), ('daemon', START_DAEMON)):
+        for name, code in (('exits', 'std::exit(0);'), ('daemon', START_DAEMON),
+                           ('spins', 'for (volatile long lrtSpin = 0;; lrtSpin = lrtSpin + 1) {}')):
             tg.put_chapter(cls.tmp, name, tg.inject(book_chapter, tg.F9, code))
         cls.no_bwrap = tg.failing_bwrap(os.path.join(cls.tmp, 'no-bwrap'))
 
@@ -95,7 +99,7 @@ class CrashInOneExerciseTest(unittest.TestCase):
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
-    def grade(self, submission, mode, fallback):
+    def grade(self, submission, mode, fallback, options=()):
         """Grades the submission in the mode; its results.json, once it is
         checked that nothing of the grading is left."""
         out = os.path.join(self.tmp, 'out', submission, mode)
@@ -105,11 +109,16 @@ class CrashInOneExerciseTest(unittest.TestCase):
         proc = subprocess.run(
             [sys.executable, '-c', NEVER_REAPS, sys.executable, tg.GRADE,
              '--cache', os.path.join(self.tmp, 'cache-' + mode), '--out', out,
-             '--chapters', '05', '--time-limit', str(tg.TIME_LIMIT),
-             os.path.join(self.tmp, submission)],
+             '--chapters', '05', '--time-limit', str(tg.TIME_LIMIT)] + list(options) +
+            [os.path.join(self.tmp, submission)],
             cwd=tg.ROOT, env=env, capture_output=True, text=True)
         self.assertEqual(proc.returncode, 0, proc.stderr)
         ended = json.loads(proc.stdout)
+        for line in ended['left']:     # a failed test leaves no process behind
+            try:
+                os.kill(int(line.split()[0]), 9)
+            except OSError:
+                pass
         self.assertEqual(ended['status'], 0, proc.stderr)
         with open(os.path.join(out, 'results.json'), encoding='utf-8') as f:
             results = json.load(f)
@@ -134,6 +143,23 @@ class CrashInOneExerciseTest(unittest.TestCase):
     def check_daemon(self, mode, fallback):
         results = self.grade('daemon', mode, fallback)
         self.assertAlmostEqual(results['score'], sum(self.points.values()), places=3)
+
+    def check_spins(self, mode, fallback):
+        # Each call may take 60 s, the exercise 10 s in all: the grader kills
+        # the judge while its worker spins in the first call.
+        results = self.grade('spins', mode, fallback,
+                             ['--time-limit', '60', '--exercise-time-limit', '10'])
+        for test in results['tests']:
+            if test['name'].split()[0] == self.crashing:
+                self.assertIn('TIMEOUT', test['output'], test['name'])
+
+    @unittest.skipUnless(os.geteuid() == 0, 'the sandbox drops to its own user only as root')
+    def test_spinning_worker_ends_with_its_judge_in_bubblewrap(self):
+        self.check_spins('bubblewrap', fallback=False)
+
+    @unittest.skipUnless(os.geteuid() == 0, 'the fallback needs root')
+    def test_spinning_worker_ends_with_its_judge_without_namespaces(self):
+        self.check_spins('unprivileged user', fallback=True)
 
     @unittest.skipUnless(os.geteuid() == 0, 'the sandbox drops to its own user only as root')
     def test_bubblewrap(self):

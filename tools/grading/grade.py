@@ -359,6 +359,7 @@ def main(argv=None):
         parser.error('%s does not exist' % args.submission)
     out = os.path.abspath(args.out or default_out(parser, args.root, args.submission))
     protect_from_the_sandbox(args, args.submission, out)
+    sandbox.adopt_orphans()
     report = grade(args, os.path.abspath(args.submission), out)
     if not args.quiet:
         with open(os.path.join(out, 'results.txt'), encoding='utf-8') as f:

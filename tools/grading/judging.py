@@ -7,6 +7,7 @@ import hashlib
 import json
 import os
 import shutil
+import signal
 import subprocess
 import tempfile
 import time
@@ -84,6 +85,28 @@ def run_judge(args, judge, worker, results, secret):
                             tests, deadline)
 
 
+def end_the_run(judge_run):
+    """Ends the judge and whatever it started. A judge killed at the
+    exercise's deadline ends none of its workers: without namespaces nothing
+    else would (bubblewrap's die-with-parent does in the sandbox), and a
+    worker spinning in the student's code would run on, an orphan, until its
+    CPU limit, slowing the gradings after it. Its process group (the judge's
+    session) holds the workers the judge started; a root grader's workers run
+    as the sandbox's user, which holds nothing else of this grader's while no
+    judge runs, so every process of that user is ended too (a worker cannot
+    leave the group: its system-call filter refuses setsid and fork). What
+    the dead judge left came to this grader (sandbox.adopt_orphans), which
+    reaps it."""
+    try:
+        os.killpg(judge_run.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass        # the judge ended, and every worker with it
+    judge_run.communicate()
+    if sandbox.isolation() == 'unprivileged user':
+        sandbox.end_processes_of(sandbox.sandbox_uid())
+    sandbox.reap_orphans()
+
+
 def judge_tests(args, judge, argv_file, secret_file, base, results, deadline):
     """One run of the judge, on the tests `results` (their names go in a
     file too: a worker that read them on the judge's command line would know
@@ -98,13 +121,16 @@ def judge_tests(args, judge, argv_file, secret_file, base, results, deadline):
     ended = 'the exercise took longer than %d s in all' % args.exercise_time_limit
     left = deadline - time.monotonic()
     if left > 0:
+        judge_run = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, start_new_session=True)
         try:
-            proc = subprocess.run(cmd, stdin=subprocess.DEVNULL, capture_output=True,
-                                  timeout=left, start_new_session=True)
-            ended = None if proc.returncode in (0, 1) else \
-                'the judge ended with status %d' % proc.returncode
+            judge_run.communicate(timeout=left)
+            ended = None if judge_run.returncode in (0, 1) else \
+                'the judge ended with status %d' % judge_run.returncode
         except subprocess.TimeoutExpired:
             pass
+        finally:
+            end_the_run(judge_run)
     found = records.read_report(report)
     for r in results:
         if r.full not in found:

@@ -29,6 +29,7 @@ the files the world can read.
 Limits (prlimit): address space, CPU seconds, file size, processes, open
 files, no core dumps.
 """
+import ctypes
 import fcntl
 import functools
 import os
@@ -37,6 +38,7 @@ import signal
 import stat
 import subprocess
 import tempfile
+import time
 
 # The unprivileged user the sandbox runs as when the grader is root: a uid
 # that no account uses, so that RLIMIT_NPROC counts the sandbox alone.
@@ -143,6 +145,34 @@ def end_processes_of(uid):
     _, status = os.waitpid(child, 0)
     if status != 0:
         raise RuntimeError('could not end the processes of uid %d' % uid)
+
+
+PR_SET_CHILD_SUBREAPER = 36
+
+
+def adopt_orphans():
+    """Makes this grader the parent of every process that its judges leave
+    when they die: a worker whose judge was killed at the exercise's
+    deadline, a sandbox whose parent died. Without this they would go to the
+    container's first process, which may be no init and reap nothing; each
+    would stay a zombie of the sandbox's user and count against its process
+    limit. reap_orphans() then ends and reaps them."""
+    libc = ctypes.CDLL(None, use_errno=True)
+    if libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) != 0:
+        raise OSError(ctypes.get_errno(), 'prctl(PR_SET_CHILD_SUBREAPER)')
+
+
+def reap_orphans(seconds=10):
+    """Waits for the children this grader adopted, once they were killed;
+    called when no process that the grader started itself is running."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        try:
+            pid, _ = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:
+            return          # no child left
+        if pid == 0:
+            time.sleep(0.01)
 
 
 def _drop_privileges():

@@ -7,22 +7,26 @@ The grading cases grade chapter 5 with ex-5.10's region changed, in both
 isolation modes: bubblewrap, and the fallback without namespaces (a `bwrap`
 on PATH that fails, as where a container forbids namespaces)."""
 import glob
+import io
 import json
 import os
 import shutil
 import subprocess
 import sys
+import tarfile
 import tempfile
 import threading
 import time
 import unittest
+import xml.etree.ElementTree as ET
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))
 import test_grade as tg  # noqa: E402
 from tools.exercises import markup  # noqa: E402
-from tools.grading import build as grade_build, records  # noqa: E402
+from tools.grading import build as grade_build, records, submission  # noqa: E402
+from tools.grading.report import Report, Result  # noqa: E402
 
 # ex-5.10's region, after the book's solution lines.
 SOLUTION = 'Float invD = invDir[i];\nint isNeg = dirIsNeg[i];'
@@ -95,6 +99,52 @@ class CacheKeyTest(unittest.TestCase):
                     b'{"test": "A.b", "verdict": "FAIL", "failures": ["\xff"]}\n'
                     b'{"test": "A.c", "verdict": "FAIL", "failures": []}\n')
         self.assertEqual(sorted(records.read_report(path)), ['A.a', 'A.c'])
+
+
+class ShownTextTest(unittest.TestCase):
+    """What a submission chose that the feedback shows: its members' names
+    and what its code threw (a red team: a tar member's name put a heading
+    and an image into results.json, 200 names of a megabyte each made the
+    grader hold 1.25 GB and write 210 MB of feedback, and U+FFFE in a thrown
+    message made junit.xml unreadable)."""
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix='lrt-shown-')
+        self.addCleanup(shutil.rmtree, self.tmp)
+
+    def archive(self, members):
+        path = os.path.join(self.tmp, 'submission.tar.gz')
+        with tarfile.open(path, 'w:gz', format=tarfile.PAX_FORMAT) as tar:
+            for name, data in members:
+                info = tarfile.TarInfo(name)
+                info.size = len(data)
+                tar.addfile(info, io.BytesIO(data))
+        return path
+
+    def test_member_names_are_shown_safely_and_read_within_bounds(self):
+        markdown = 'notes`\n\n## All tests passed: 7/7\n\n![b](https://example.invalid/b.png)\n`x'
+        members = [('chapters/05-slab-test.md', b'chapter text\n'), (markdown, b'x'),
+                   ('a' * 300000 + '.txt', b'x')]
+        members += [('%d' % k + 'b' * 150000, b'x') for k in range(10)]
+        sub = submission.read_submission(self.archive(members), {'05-slab-test.md'})
+        self.assertEqual(sub.chapters['05-slab-test.md'],
+                         ('chapters/05-slab-test.md', b'chapter text\n'))
+        self.assertIn(submission.TOO_MANY, sub.problems)
+        self.assertLess(len(sub.ignored), 10)      # the names' budget stopped the reading
+        for name, _ in sub.ignored:
+            self.assertLess(len(name), submission.SHOWN_NAME + 40)
+            self.assertNotIn('\n', name)
+            self.assertNotIn('`', name)
+
+    def test_a_thrown_message_keeps_junit_xml_well_formed(self):
+        r = Result('ex-5.10', '05', 'Ex5_10_Slab', 'Odd', False, 1.0, '')
+        r.judged('FAIL', [{'kind': 'threw', 'call': '',
+                           'message': 'odd \ufffe\uffff\ud800 characters'}])
+        report = Report(self.tmp, 'odd')
+        report.exercises.append(('05', 'ex-5.10', 1.0))
+        report.results.append(r)
+        suites = ET.fromstring(report.junit())
+        self.assertIn('odd ??? characters', ''.join(suites.itertext()))
 
 
 class PeakMemory:

@@ -24,8 +24,9 @@ def first_line(text):
 
 def clean(text, limit=MAX_SHOWN):
     """Text that may come from the student's code (what it threw), as it is
-    shown: printable, and not too long."""
-    text = re.sub(r'[^\x20-\x7e\n\t\u00a0-\uffff]', '?', text or '')
+    shown: printable, and not too long. Surrogates and the noncharacters
+    U+FFFE and U+FFFF are no characters of XML: junit.xml would not parse."""
+    text = re.sub(r'[^\x20-\x7e\n\t\u00a0-\ud7ff\ue000-\ufffd]', '?', text or '')
     return text if len(text) <= limit else text[:limit] + ' [...]'
 
 

@@ -12,6 +12,11 @@ CHAPTER_NAME = re.compile(r'^(\d\d)-[^/\\]*\.md$')
 MAX_FILES = 2000              # members looked at in a submission
 MAX_CHAPTER_BYTES = 4 << 20   # one chapter file
 MAX_TOTAL_BYTES = 64 << 20    # everything read from a submission
+MAX_NAME = 512                # characters of a member's name that is used
+MAX_NAMES_BYTES = 1 << 20     # the names of all members, read
+SHOWN_NAME = 200              # characters of an ignored name that are shown
+TOO_MANY = ('more than %d files, or names longer than %d bytes in all: the rest is ignored'
+            % (MAX_FILES, MAX_NAMES_BYTES))
 
 class Submission:
     """The chapter files found in a submission, and what was ignored."""
@@ -19,6 +24,20 @@ class Submission:
         self.chapters = {}    # basename -> (name inside the submission, bytes)
         self.ignored = []     # (name, reason)
         self.problems = []    # messages about the submission as a whole
+
+
+def showable(name):
+    """Whether a name can stand inside `...` in the feedback as it is."""
+    return all(c.isprintable() and c != '`' for c in name)
+
+
+def shown(name):
+    """A member's name as the feedback may show it inside `...`: on one
+    line, without backticks, short; the submission chose it, and a name can
+    be a megabyte of Markdown."""
+    text = ''.join("'" if c == '`' else c if c.isprintable() else
+                   c.encode('unicode_escape').decode('ascii') for c in name[:SHOWN_NAME])
+    return text if len(name) <= SHOWN_NAME else text + '... (%d characters)' % len(name)
 
 
 def safe_name(name):
@@ -40,6 +59,10 @@ def read_submission(path, reference_names):
 
     def consider(name, size, reader):
         nonlocal total
+        if len(name) > MAX_NAME or not showable(name):
+            sub.ignored.append((shown(name), 'a name too long or with characters that '
+                                'cannot be shown: ignored'))
+            return
         clean = safe_name(name)
         if clean is None:
             sub.ignored.append((name, 'unsafe path (absolute or with ..): ignored'))
@@ -80,7 +103,7 @@ def read_submission(path, reference_names):
             dirs.sort()
             for d in list(dirs):
                 if os.path.islink(os.path.join(top, d)):
-                    sub.ignored.append((os.path.relpath(os.path.join(top, d), path),
+                    sub.ignored.append((shown(os.path.relpath(os.path.join(top, d), path)),
                                         'a symbolic link: ignored'))
                     dirs.remove(d)
             for f in sorted(files):
@@ -88,10 +111,10 @@ def read_submission(path, reference_names):
                 rel = os.path.relpath(full, path)
                 count += 1
                 if count > MAX_FILES:
-                    sub.problems.append('more than %d files: the rest is ignored' % MAX_FILES)
+                    sub.problems.append(TOO_MANY)
                     break
                 if os.path.islink(full) or not os.path.isfile(full):
-                    sub.ignored.append((rel, 'not a regular file (a link?): ignored'))
+                    sub.ignored.append((shown(rel), 'not a regular file (a link?): ignored'))
                     continue
 
                 def read(full=full):
@@ -101,16 +124,17 @@ def read_submission(path, reference_names):
     elif zipfile.is_zipfile(path):
         try:
             with zipfile.ZipFile(path) as z:
+                names = 0
                 for count, info in enumerate(z.infolist()):
-                    if count >= MAX_FILES:
-                        sub.problems.append('more than %d files: the rest is ignored'
-                                            % MAX_FILES)
+                    names += len(info.filename)
+                    if count >= MAX_FILES or names > MAX_NAMES_BYTES:
+                        sub.problems.append(TOO_MANY)
                         break
                     if info.is_dir():
                         continue
                     mode = (info.external_attr >> 16) & 0o170000
                     if mode and mode != 0o100000:
-                        sub.ignored.append((info.filename, 'not a regular file (a link?): '
+                        sub.ignored.append((shown(info.filename), 'not a regular file (a link?): '
                                             'ignored'))
                         continue
                     consider(info.filename, info.file_size, reader_of(
@@ -120,16 +144,17 @@ def read_submission(path, reference_names):
     elif tarfile.is_tarfile(path):
         try:
             with tarfile.open(path) as t:
+                names = 0
                 for count, member in enumerate(t):
-                    if count >= MAX_FILES:
-                        sub.problems.append('more than %d files: the rest is ignored'
-                                            % MAX_FILES)
+                    names += len(member.name) + len(member.linkname)
+                    if count >= MAX_FILES or names > MAX_NAMES_BYTES:
+                        sub.problems.append(TOO_MANY)
                         break
                     if member.isdir():
                         continue
                     if not member.isfile():
-                        sub.ignored.append((member.name, 'not a regular file (a link?): '
-                                            'ignored'))
+                        sub.ignored.append((shown(member.name), 'not a regular file (a '
+                                            'link?): ignored'))
                         continue
                     consider(member.name, member.size, reader_of(
                         lambda m=member: t.extractfile(m).read(MAX_CHAPTER_BYTES + 1)))

@@ -294,5 +294,17 @@ class BenchTableTest(unittest.TestCase):
         self.assertIn('0.json: 940544 triangles: no rays_incoherent.bin', r.stderr)
 
 
+class BenchScriptsTest(unittest.TestCase):
+    """The scripts that run make find the repository from where they lie
+    (tools/bench/): moved one folder down, they ran make in tools/."""
+
+    def test_the_scripts_run_make_in_the_repository(self):
+        sys.path.insert(0, ROOT)
+        from tools.bench import compare, loop
+        self.assertEqual(compare.ROOT, ROOT)
+        self.assertEqual(loop.ROOT, ROOT)
+        self.assertTrue(os.path.exists(os.path.join(loop.ROOT, 'Makefile')))
+
+
 if __name__ == '__main__':
     unittest.main()

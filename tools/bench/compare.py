@@ -24,7 +24,7 @@ import shlex
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # the repository
 DEFAULT_ARGS = '--methods sah --passes 1 --builds 1 --benchmark_filter=first|final'
 
 

@@ -32,6 +32,7 @@ import sys
 import tempfile
 import time
 
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # the repository
 FRAGMENT = '<<Compute the reciprocal direction and its sign on axis i>>='
 
 
@@ -75,8 +76,7 @@ def median_of(runs, measure):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    parser.add_argument('--dir', default=os.path.dirname(os.path.dirname(
-        os.path.abspath(__file__))))
+    parser.add_argument('--dir', default=ROOT)
     parser.add_argument('--runs', type=int, default=5)
     parser.add_argument('--clean-clone', action='store_true')
     args = parser.parse_args()

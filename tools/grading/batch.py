@@ -19,6 +19,7 @@ from tools.grading import build as grade_build
 from tools.grading.files import atomic_write, write_private
 from tools.grading.feedback import first_line
 from tools.grading.selection import graded_chapters, graded_exercises, load_book
+from tools.grading.submission import printable
 
 # The grader that grades each submission, as a process of its own.
 GRADE = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'grade.py')
@@ -37,12 +38,6 @@ MAX_NAME = 100
 # which no safe name does).
 RESERVED_NAMES = ('grades.csv', 'gradebook.csv', 'cache')
 ARCHIVE_SUFFIX = re.compile(r'\.(tar\.gz|tgz|zip)$')
-
-
-def printable(name):
-    """A file name as it can be shown on one line (control characters escaped)."""
-    return ''.join(c if c.isprintable() else c.encode('unicode_escape').decode('ascii')
-                   for c in name)
 
 
 def name_problem(name):

@@ -54,13 +54,13 @@ from tools.exercises import markup  # noqa: E402
 from tools.grading import build as grade_build  # noqa: E402
 from tools.grading import compile_wall  # noqa: E402
 from tools.grading import sandbox  # noqa: E402
-from tools.grading.batch import ARCHIVE_SUFFIX, grade_batch, name_problem, printable  # noqa: E402,E501
+from tools.grading.batch import ARCHIVE_SUFFIX, grade_batch, name_problem  # noqa: E402
 from tools.grading.diagnostics import compiler_errors, region_lines, shown_output  # noqa: E402
 from tools.grading.judging import judge_exercise  # noqa: E402
 from tools.grading.report import Report, Result, fence_safe  # noqa: E402
 from tools.grading.selection import graded_exercises, hint_text, load_book  # noqa: E402
 from tools.grading.structure import check_structure, exercise_text, parse_chapter  # noqa: E402,E501
-from tools.grading.submission import read_submission  # noqa: E402
+from tools.grading.submission import printable, read_submission  # noqa: E402
 
 DEFAULT_CXXFLAGS = ' '.join(grade_build.WORKER_CXXFLAGS)  # tools/compile/flags.mk
 

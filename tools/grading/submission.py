@@ -31,12 +31,17 @@ def showable(name):
     return all(c.isprintable() and c != '`' for c in name)
 
 
+def printable(name):
+    """A file name as it can be shown on one line (control characters escaped)."""
+    return ''.join(c if c.isprintable() else c.encode('unicode_escape').decode('ascii')
+                   for c in name)
+
+
 def shown(name):
     """A member's name as the feedback may show it inside `...`: on one
     line, without backticks, short; the submission chose it, and a name can
     be a megabyte of Markdown."""
-    text = ''.join("'" if c == '`' else c if c.isprintable() else
-                   c.encode('unicode_escape').decode('ascii') for c in name[:SHOWN_NAME])
+    text = printable(name[:SHOWN_NAME].replace('`', "'"))
     return text if len(name) <= SHOWN_NAME else text + '... (%d characters)' % len(name)
 
 

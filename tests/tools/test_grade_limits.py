@@ -136,6 +136,31 @@ class ShownTextTest(unittest.TestCase):
             self.assertNotIn('\n', name)
             self.assertNotIn('`', name)
 
+    def test_a_name_used_holds_no_markup_and_a_name_shown_stays_short(self):
+        # The chapter under a path of Markdown and HTML is not graded, and
+        # no reason, which shows names out of `...`, holds markup; a name
+        # whose characters escape to ten each is still cut to its length.
+        chapter = b'chapter text\n'
+        members = [('zz/05-slab-test.md', chapter),
+                   ('<b onmouseover=x>[x](javascript:y)/05-slab-test.md', chapter),
+                   ('05-<img src=x>[a](https:b)**B**.md', b'x'),
+                   ('\U000e0001' * 250, b'x')]
+        sub = submission.read_submission(self.archive(members), {'05-slab-test.md'})
+        self.assertEqual(sub.chapters['05-slab-test.md'][0], 'zz/05-slab-test.md')
+        for name, reason in sub.ignored:
+            self.assertNotRegex(reason, r'[<>\[\]*]')
+            self.assertLess(len(name), submission.SHOWN_NAME + 40)
+
+    def test_a_directory_stops_at_its_first_entry_over_the_limit(self):
+        top = os.path.join(self.tmp, 'submission')
+        for k in range(submission.MAX_FILES + 100):
+            os.makedirs(os.path.join(top, 'd%04d' % k))
+            with open(os.path.join(top, 'd%04d' % k, 'f'), 'w') as f:
+                f.write('x')
+        sub = submission.read_submission(top, {'05-slab-test.md'})
+        self.assertEqual(sub.problems, [submission.TOO_MANY])
+        self.assertLessEqual(len(sub.ignored), submission.MAX_FILES)
+
     def test_a_thrown_message_keeps_junit_xml_well_formed(self):
         r = Result('ex-5.10', '05', 'Ex5_10_Slab', 'Odd', False, 1.0, '')
         r.judged('FAIL', [{'kind': 'threw', 'call': '',

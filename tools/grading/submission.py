@@ -26,9 +26,14 @@ class Submission:
         self.problems = []    # messages about the submission as a whole
 
 
+# The characters of a name that is used, and so shown as it is, in and out
+# of `...`: none that Markdown or HTML read as markup (<, [, *, !, `, ...).
+SHOWABLE = re.compile(r"[\w .,+@=~()/'-]*")
+
+
 def showable(name):
-    """Whether a name can stand inside `...` in the feedback as it is."""
-    return all(c.isprintable() and c != '`' for c in name)
+    """Whether a name can stand in the feedback as it is."""
+    return SHOWABLE.fullmatch(name) is not None
 
 
 def printable(name):
@@ -42,7 +47,9 @@ def shown(name):
     line, without backticks, short; the submission chose it, and a name can
     be a megabyte of Markdown."""
     text = printable(name[:SHOWN_NAME].replace('`', "'"))
-    return text if len(name) <= SHOWN_NAME else text + '... (%d characters)' % len(name)
+    if len(name) <= SHOWN_NAME and len(text) <= SHOWN_NAME:
+        return text
+    return text[:SHOWN_NAME] + '... (%d characters)' % len(name)
 
 
 def safe_name(name):
@@ -65,8 +72,9 @@ def read_submission(path, reference_names):
     def consider(name, size, reader):
         nonlocal total
         if len(name) > MAX_NAME or not showable(name):
-            sub.ignored.append((shown(name), 'a name too long or with characters that '
-                                'cannot be shown: ignored'))
+            sub.ignored.append((shown(name), 'a name of more than %d characters, or with '
+                                'characters other than letters, digits, spaces and '
+                                ". , + @ = ~ ( ) / ' - _: ignored" % MAX_NAME))
             return
         clean = safe_name(name)
         if clean is None:
@@ -103,8 +111,15 @@ def read_submission(path, reference_names):
         return get
 
     if os.path.isdir(path):
-        count = 0
+        count = names = 0
         for top, dirs, files in os.walk(path, followlinks=False):
+            # Every entry counts, directories and links too, and the walk
+            # ends at the first that goes over.
+            count += len(dirs) + len(files)
+            names += sum(len(n) for n in dirs + files)
+            if count > MAX_FILES or names > MAX_NAMES_BYTES:
+                sub.problems.append(TOO_MANY)
+                break
             dirs.sort()
             for d in list(dirs):
                 if os.path.islink(os.path.join(top, d)):
@@ -114,10 +129,6 @@ def read_submission(path, reference_names):
             for f in sorted(files):
                 full = os.path.join(top, f)
                 rel = os.path.relpath(full, path)
-                count += 1
-                if count > MAX_FILES:
-                    sub.problems.append(TOO_MANY)
-                    break
                 if os.path.islink(full) or not os.path.isfile(full):
                     sub.ignored.append((shown(rel), 'not a regular file (a link?): ignored'))
                     continue

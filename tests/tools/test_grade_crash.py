@@ -38,7 +38,31 @@ NEVER_REAPS = r'''
 import ctypes, json, os, subprocess, sys
 PR_SET_CHILD_SUBREAPER = 36
 ctypes.CDLL(None).prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
-status = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL).returncode
+grader = subprocess.Popen(sys.argv[1:], stdout=subprocess.DEVNULL)
+def judge_running():
+    # A judge that the grader started (not another grading's).
+    for pid in filter(str.isdigit, os.listdir('/proc')):
+        try:
+            with open('/proc/%s/stat' % pid) as f:
+                name, fields = f.read().split(' (', 1)[1].rsplit(') ', 1)
+        except (OSError, ValueError, IndexError):
+            continue
+        if name == 'judge' and int(fields.split()[1]) == grader.pid:
+            return True
+    return False
+if os.environ.get('LRT_KILL_THE_GRADER'):
+    # Killed outright once its judge has run a while, as a batch's time
+    # limit or an outer timeout kills it: it can end nothing itself.
+    import signal, time
+    while grader.poll() is None and not judge_running():
+        time.sleep(0.2)
+    time.sleep(5)
+    grader.send_signal(signal.SIGKILL)
+    grader.wait()
+    time.sleep(5)
+    status = 0
+else:
+    status = grader.wait()
 left = []
 for pid in filter(str.isdigit, os.listdir('/proc')):
     try:
@@ -99,13 +123,15 @@ class CrashInOneExerciseTest(unittest.TestCase):
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
-    def grade(self, submission, mode, fallback, options=()):
+    def grade(self, submission, mode, fallback, options=(), kill=False):
         """Grades the submission in the mode; its results.json, once it is
         checked that nothing of the grading is left."""
         out = os.path.join(self.tmp, 'out', submission, mode)
         env = dict(os.environ)
         if fallback:
             env['PATH'] = self.no_bwrap + os.pathsep + env['PATH']
+        if kill:
+            env['LRT_KILL_THE_GRADER'] = '1'
         proc = subprocess.run(
             [sys.executable, '-c', NEVER_REAPS, sys.executable, tg.GRADE,
              '--cache', os.path.join(self.tmp, 'cache-' + mode), '--out', out,
@@ -120,12 +146,18 @@ class CrashInOneExerciseTest(unittest.TestCase):
             except OSError:
                 pass
         self.assertEqual(ended['status'], 0, proc.stderr)
-        with open(os.path.join(out, 'results.json'), encoding='utf-8') as f:
-            results = json.load(f)
-        self.assertIn(mode, results['output'])
+        if kill:
+            # What the killed grader started is this harness's now, which
+            # reaps nothing: none of it may still run (zombies it must have).
+            self.assertEqual([p for p in ended['left'] if not p.endswith(' Z')], [])
+            self.assertEqual(daemons(), [])
+            return None
         # Nothing of the grading is left: no process and no zombie.
         self.assertEqual(ended['left'], [])
         self.assertEqual(daemons(), [])
+        with open(os.path.join(out, 'results.json'), encoding='utf-8') as f:
+            results = json.load(f)
+        self.assertIn(mode, results['output'])
         return results
 
     def check_exits(self, mode, fallback):
@@ -152,6 +184,18 @@ class CrashInOneExerciseTest(unittest.TestCase):
         for test in results['tests']:
             if test['name'].split()[0] == self.crashing:
                 self.assertIn('TIMEOUT', test['output'], test['name'])
+
+    def check_killed_grader(self, mode, fallback):
+        self.grade('spins', mode, fallback,
+                   ['--time-limit', '60', '--exercise-time-limit', '60'], kill=True)
+
+    @unittest.skipUnless(os.geteuid() == 0, 'the sandbox drops to its own user only as root')
+    def test_killed_grader_leaves_nothing_running_in_bubblewrap(self):
+        self.check_killed_grader('bubblewrap', fallback=False)
+
+    @unittest.skipUnless(os.geteuid() == 0, 'the fallback needs root')
+    def test_killed_grader_leaves_nothing_running_without_namespaces(self):
+        self.check_killed_grader('unprivileged user', fallback=True)
 
     @unittest.skipUnless(os.geteuid() == 0, 'the sandbox drops to its own user only as root')
     def test_spinning_worker_ends_with_its_judge_in_bubblewrap(self):

@@ -147,6 +147,7 @@ def end_processes_of(uid):
         raise RuntimeError('could not end the processes of uid %d' % uid)
 
 
+PR_SET_PDEATHSIG = 1
 PR_SET_CHILD_SUBREAPER = 36
 
 
@@ -160,6 +161,18 @@ def adopt_orphans():
     libc = ctypes.CDLL(None, use_errno=True)
     if libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) != 0:
         raise OSError(ctypes.get_errno(), 'prctl(PR_SET_CHILD_SUBREAPER)')
+
+
+def die_with_parent():
+    """In a child before it runs its program (Popen's preexec_fn): it is
+    killed when the grader dies. A grader killed outright (a batch's time
+    limit for one submission, an outer timeout) can end nothing: without
+    this its judge would run on, starting the student's code in workers
+    under a uid that the next grader takes. (The workers die with their
+    judge the same way: setpriv --pdeathsig, or bubblewrap's
+    --die-with-parent.)"""
+    libc = ctypes.CDLL(None, use_errno=True)
+    libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
 
 
 def reap_orphans(seconds=10):
@@ -181,7 +194,7 @@ def _drop_privileges():
         return []
     uid = sandbox_uid()
     return ['setpriv', '--reuid=%d' % uid, '--regid=%d' % SANDBOX_GID,
-            '--clear-groups', '--no-new-privs', '--']
+            '--clear-groups', '--no-new-privs', '--pdeathsig=KILL', '--']
 
 
 def _limits(memory_mb, cpu_seconds, processes, file_mb):

@@ -79,15 +79,19 @@ $(BUILD)/deps.mk: FORCE
 # instead, which the checks renew only when a chapter, a test or a checker
 # changed, or a file was added or removed (the list of inputs, kept by cpif).
 LINT_INPUTS := $(CHAPTERS) $(sort $(wildcard tests/ch[0-9][0-9]/* tests/hidden/ch[0-9][0-9]/*))
+# The measured numbers that the chapters print (tools/bench/book_numbers.py).
+MEASUREMENTS := figures/data/bvh-measurements.json
 LINT = python3 tools/noweb/lint.py --book $(CHAPTERS) && \
-       python3 tools/exercises/markup.py lint $(CHAPTERS)
+       python3 tools/exercises/markup.py lint $(CHAPTERS) && \
+       python3 tools/bench/book_numbers.py --check $(MEASUREMENTS) $(CHAPTERS)
 LINTED := $(BUILD)/linted.stamp
 
 lint:
 	$(LINT)
 
 $(LINTED): $(LINT_INPUTS) $(BUILD)/lint-inputs.list tools/noweb/lint.py tools/exercises/markup.py \
-           tools/noweb/chunks.py $(wildcard tools/exercises/*.py)
+           tools/noweb/chunks.py $(wildcard tools/exercises/*.py) \
+           tools/bench/book_numbers.py $(MEASUREMENTS)
 	$(call say,LINT,the chapters and the names of their exercise tests)
 	$(Q)$(LINT)
 	@touch $@
@@ -110,7 +114,7 @@ lib: $(LINTED)
 # tools' own tests (tests/tools) run with the whole set, once: they do not
 # depend on FLOAT or SANITIZE. The appendix (09) is a program, the benchmark,
 # whose tests run it from Python.
-PYTHON_TESTS_09 := tests/tools/test_bench.py
+PYTHON_TESTS_09 := tests/tools/test_bench.py tests/tools/test_measurements.py
 test: $(LINTED)
 	@if [ -z "$$(find $(BUILD) -path '*/obj/tests' -print -quit)" ]; then \
 	    echo "make test: the first build compiles each chapter's tests as of every" \
@@ -137,6 +141,7 @@ $(BUILD)/book.pdf: book.md $(wildcard references.bib) $(CHAPTERS) tools/book/wea
                    tools/book/preamble.tex \
                    tools/book/tikz-preamble.tex \
                    tools/book/highlight.theme tools/book/layout_check.py \
+                   tools/book/measured.lua tools/bench/book_numbers.py $(MEASUREMENTS) \
                    $(wildcard figures/*) | $(LINTED)
 	$(call say,WEAVE,$@ (pandoc then pdflatex until the references settle))
 	$(Q)tools/book/weave.sh $(BUILD)/book book.md $(CHAPTERS)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Turn the JSON of `make bench` into tables.
 
-    tools/bench/table.py figures/data/bvhbench-levels.json > figures/bvh-bench.dat
+    tools/bench/table.py figures/data/bvh-measurements.json > figures/bvh-bench.dat
     tools/bench/table.py --configurations build/bvhbench.json \\
         build/bench/g++_-O3/bvhbench.json ... > table.md
 

@@ -70,7 +70,8 @@ def write(path, text):
 
 def run_pandoc(inputs):
     cmd = ['pandoc'] + inputs + [
-        '--from', 'markdown', '--lua-filter', os.path.join(HERE, 'exercises.lua'),
+        '--from', 'markdown', '--lua-filter', os.path.join(HERE, 'measured.lua'),
+        '--lua-filter', os.path.join(HERE, 'exercises.lua'),
         '--lua-filter', os.path.join(HERE, 'html.lua'), '--citeproc', '--mathjax',
         '--to', 'html5']
     proc = subprocess.run(cmd, capture_output=True, text=True)

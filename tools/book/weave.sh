@@ -25,7 +25,8 @@ cat "$tools/tikz-preamble.tex" "$tools/preamble.tex" >> "$out/preamble.tex"
 
 # citeproc runs after weave.lua, which resolves @sec:, @fig:, @eq: and @tbl:
 # itself; citeproc only warns about a key that the bibliography lacks.
-pandoc "$@" --from markdown --lua-filter "$tools/exercises.lua" \
+pandoc "$@" --from markdown --lua-filter "$tools/measured.lua" \
+    --lua-filter "$tools/exercises.lua" \
     --lua-filter "$tools/weave.lua" --citeproc \
     --top-level-division=chapter --number-sections --toc \
     --include-in-header="$out/preamble.tex" \

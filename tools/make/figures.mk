@@ -5,7 +5,7 @@
 # FLOAT says), compiles the program against it and runs it from the
 # repository's root: it writes every rendered figure into figures/ as PNG,
 # at the size at which the book prints it (300 pixels per inch or more).
-# Then it turns the committed measurements figures/data/bvhbench-levels.json
+# Then it turns the committed measurements figures/data/bvh-measurements.json
 # (see figures/data/README.md) into the table figures/bvh-bench.dat, which
 # the book's plot of the BVH benchmark reads with pgfplots when it is woven.
 #
@@ -14,10 +14,12 @@
 # Checking"), and checks that the committed table is the one the measurements
 # give; CI runs it, so that the figures cannot drift from the code or data.
 #
-# make bench-levels: remeasures figures/data/bvhbench-levels.json (the bench of
-# Appendix A on the bunny subdivided 0 to 4 times; a few minutes). It needs the
-# shared generator: BENCH_GENERATOR=/path/to/gen_bench_data.py if it is not at
-# ../shared/bench/.
+# make book-measurements: remeasures figures/data/bvh-measurements.json, the
+# one file behind every measured number of chapter 7, Appendix A and the plot
+# (tools/bench/measure.py: the bench of Appendix A on the bunny subdivided 0 to
+# 4 times, then callgrind's counts per ray; about ten minutes). It needs the
+# shared generator (BENCH_GENERATOR=/path/to/gen_bench_data.py if it is not at
+# ../shared/bench/) and valgrind.
 #
 # The book itself never renders: it includes the committed files.
 
@@ -27,9 +29,9 @@ FIGURES_BIN := $(FIGURES_DIR)/render/figures
 FIGURES_CXXFLAGS := $(BOOK_CXXFLAGS)
 FIGURES_ASOF := $(ASOF) ASOF=$(LAST) FLOAT= SANITIZE=
 BENCH_LEVELS_DATA := $(BUILD)/bench-levels
-BENCH_LEVELS_JSON := figures/data/bvhbench-levels.json
+BENCH_LEVELS_JSON := figures/data/bvh-measurements.json
 
-.PHONY: figures figures-build check-figures bench-levels
+.PHONY: figures figures-build check-figures book-measurements
 
 figures-build: $(LINTED)
 	$(Q)$(FIGURES_ASOF) tangle
@@ -53,10 +55,10 @@ check-figures: figures-build
 	           "$(BENCH_LEVELS_JSON); run make figures and commit it" >&2; exit 1; }
 	@echo "$(BENCH_TABLE)      ok: the table of $(BENCH_LEVELS_JSON)"
 
-bench-levels: bench-build
+book-measurements: bench-build
+	@command -v valgrind > /dev/null || \
+	    { echo "make book-measurements: needs valgrind (apt-get install valgrind)" >&2; exit 1; }
 	python3 $(BENCH_GENERATOR) --out $(BENCH_LEVELS_DATA) --levels 0,1,2,3,4
-	@mkdir -p $(dir $(BENCH_LEVELS_JSON))
-	$(BENCH_BIN) $(foreach l,0 1 2 3 4,--mesh $(BENCH_LEVELS_DATA)/bunny_L$(l).ply) \
-	    --rays $(BENCH_LEVELS_DATA)/rays_primary.bin \
-	    --rays $(BENCH_LEVELS_DATA)/rays_incoherent.bin \
-	    --methods sah --passes 3 --builds 3 --json $(BENCH_LEVELS_JSON)
+	python3 tools/bench/measure.py --bench $(BENCH_BIN) --data $(BENCH_LEVELS_DATA) \
+	    --out $(BENCH_LEVELS_JSON)
+	python3 tools/bench/table.py $(BENCH_LEVELS_JSON) > $(BENCH_TABLE)

@@ -1,0 +1,142 @@
+"""Tests of the measured numbers the book prints (tools/bench/book_numbers.py
+and tools/book/measured.lua): each is formatted from the one data file, a
+derived number is computed from the values it derives from, a name the data
+lacks is an error naming the chapter's file and line, and the weave prints
+the values in place of the spans that name them."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, ROOT)
+
+from tools.bench import book_numbers  # noqa: E402
+
+MEASURED_LUA = os.path.join(ROOT, 'tools', 'book', 'measured.lua')
+
+
+def result(mesh, method, version, build, camera, incoherent, nodes=100):
+    rays = {'rays_primary.bin': camera, 'rays_incoherent.bin': incoherent}
+    return {'mesh': mesh, 'triangles': 58784, 'method': method, 'version': version,
+            'build_ms': build, 'nodes': nodes, 'leaves': 60, 'leaf_size': 4.4861,
+            'sah_cost': 20.97, 'depth': 9,
+            'rays': {name: {'mrays_per_s': speed, 'ratio': ratio, 'hits': 398701}
+                     for name, (speed, ratio) in rays.items()}}
+
+
+def data():
+    counts = {'instructions': 4608.2, 'mispredicted_branches': 51.26, 'cache_misses': 16.87}
+    return {
+        'setup': {'processor': 'Some CPU', 'compiler': 'GCC 12.2.0', 'cxx': 'g++',
+                  'cxxflags': '-O2', 'float': 'float', 'passes': 3,
+                  'build_repetitions': 3,
+                  'rays': {'rays_primary.bin': 1048576, 'rays_incoherent.bin': 1048576}},
+        'results': [
+            result('bunny_L2', 'SAH', 'first', 37.7, (4.57, 1.0), (0.6089, 1.0), nodes=600),
+            result('bunny_L2', 'SAH', 'adopted', 13.5, (10.53, 2.32), (1.93, 3.19)),
+            result('bunny_L2', 'SAH', 'final', 20.0, (12.92, 2.83), (2.48, 4.07), nodes=200),
+        ],
+        'counts': {'mesh': 'bunny_L2', 'method': 'SAH', 'rays': 65536,
+                   'camera_rows': [480, 544], 'cache': '1048576,16,64',
+                   'camera': {v: dict(counts) for v in ('first', 'adopted', 'final')},
+                   'incoherent': {'first': dict(counts), 'adopted': dict(counts),
+                                  'final': dict(counts, instructions=1152.05)}},
+    }
+
+
+class FormatTest(unittest.TestCase):
+    def test_three_significant_digits_with_separators(self):
+        cases = {0.6089: '0.609', 12.92: '12.9', 1096.4: '1,096', 9.996: '10.0',
+                 2.5: '2.50', 0.0996: '0.0996', 150.4: '150', 99.96: '100'}
+        for x, text in cases.items():
+            self.assertEqual(book_numbers.significant(x), text, x)
+
+    def test_values_and_derived_values(self):
+        v = book_numbers.values(data())
+        self.assertEqual(v['L2.triangles'], '58,784')
+        self.assertEqual(v['L2.sah.first.incoherent'], '0.609')
+        self.assertEqual(v['L2.sah.final.camera.ratio'], '2.83')
+        self.assertEqual(v['L2.sah.first.incoherent.us'], '1.6')   # 1 / 0.6089
+        # 2.83 / 2.32 and 4.07 / 3.19: the final version's gain over the adopted
+        self.assertEqual(v['L2.sah.final.camera.gain'], '22')
+        self.assertEqual(v['L2.sah.final.incoherent.gain'], '28')
+        self.assertEqual(v['L2.sah.final.build.percent'], '53')   # 20.0 / 37.7
+        self.assertEqual(v['L2.sah.first.nodes.perfinal'], '3.0')
+        self.assertEqual(v['L2.sah.final.leafsize'], '4.49')
+        self.assertEqual(v['count.camera.first.instructions'], '4,608')
+        self.assertEqual(v['count.incoherent.first.mispredicted'], '51.3')
+        self.assertEqual(v['count.incoherent.first.perfinal'], '4.0')
+        self.assertEqual(v['count.rows'], '480 to 543')
+        self.assertEqual(v['count.cache'], '1\u00a0MB')
+        self.assertEqual(v['setup.rays.camera'], '1,048,576')
+        self.assertEqual(v['setup.compiler'], 'GCC\u00a012.2.0')
+
+    def test_data_that_is_not_the_measurements_is_an_error(self):
+        broken = data()
+        del broken['counts']['camera']
+        with self.assertRaises(SystemExit) as e:
+            book_numbers.values(broken, 'x.json')
+        self.assertIn('x.json', str(e.exception.code))
+
+
+class CheckTest(unittest.TestCase):
+    def test_an_unknown_name_is_reported_with_file_and_line(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            chapter = os.path.join(tmp, '07-x.md')
+            with open(chapter, 'w', encoding='utf-8') as f:
+                f.write('Rays at [L2.sah.final.camera]{.m} per second,\n'
+                        'and at [L2.sah.final.camra]{.m}.\n')
+            errors = book_numbers.check(book_numbers.values(data()), [chapter])
+        self.assertEqual(errors, ["%s:2: no measured number named 'L2.sah.final.camra'"
+                                  % chapter])
+
+    def test_the_book_names_only_numbers_that_its_data_has(self):
+        chapters = sorted(os.path.join(ROOT, 'chapters', f)
+                          for f in os.listdir(os.path.join(ROOT, 'chapters')))
+        table = book_numbers.load(os.path.join(ROOT, 'figures', 'data',
+                                               'bvh-measurements.json'))
+        self.assertEqual(book_numbers.check(table, chapters), [])
+
+
+class WeaveTest(unittest.TestCase):
+    def weave(self, text, measurements=True):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, 'm.json')
+            with open(path, 'w', encoding='utf-8') as f:
+                json.dump(data(), f)
+            meta = '---\nmeasurements: %s\n---\n\n' % path if measurements else ''
+            return subprocess.run(['pandoc', '--from', 'markdown', '--to', 'plain',
+                                   '--lua-filter', MEASURED_LUA],
+                                  input=meta + text, capture_output=True, text=True)
+
+    def test_a_span_prints_its_value(self):
+        r = self.weave('| a | b |\n|---|---|\n| [L2.sah.final.camera]{.m} | '
+                       '[count.rows]{.m} |\n\nAt [L2.sah.first.incoherent]{.m} Mrays/s.\n')
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn('12.9', r.stdout)
+        self.assertIn('480 to 543', r.stdout)
+        self.assertIn('At 0.609 Mrays/s.', r.stdout)
+        self.assertNotIn('L2.sah', r.stdout)
+
+    def test_other_spans_are_left_alone(self):
+        r = self.weave('A [word]{.smallcaps} stays.\n')
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn('WORD', r.stdout.upper())
+
+    def test_an_unknown_name_stops_the_weave(self):
+        r = self.weave('At [L2.sah.final.camra]{.m}.\n')
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn('L2.sah.final.camra', r.stderr)
+
+    def test_a_span_without_the_data_file_stops_the_weave(self):
+        r = self.weave('At [L2.sah.final.camera]{.m}.\n', measurements=False)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn('measurements', r.stderr)
+
+
+if __name__ == '__main__':
+    unittest.main()

@@ -1,0 +1,194 @@
+#!/usr/bin/env python3
+"""The measured numbers that the book prints, by name, from one data file.
+
+    tools/bench/book_numbers.py --lua MEASUREMENTS.json
+    tools/bench/book_numbers.py --list MEASUREMENTS.json
+    tools/bench/book_numbers.py --check MEASUREMENTS.json CHAPTER.md...
+
+A chapter writes a measured number as a span, `[L2.sah.final.camera]{.m}`,
+and the weave prints in its place the value of that name, formatted as the
+book prints numbers (tools/book/measured.lua runs `--lua`, which writes the
+values as a Lua table, since pandoc's Lua has no JSON reader). So the text,
+its tables and the plot (tools/bench/table.py) all take their numbers from
+the one file that tools/bench/measure.py writes, and cannot disagree.
+
+`--list` prints every name and its value; `--check` fails, naming the file and
+line, on a span whose name the data does not define (make lint runs it).
+
+The names, for mesh Lk (k = 0..4), method (sah, hlbvh, middle, equalcounts),
+version (first, adopted, final) and ray set (camera, incoherent):
+
+    Lk.triangles, Lk.hits.camera            the mesh's size, hit counts
+    Lk.method.version.build                 build time, ms
+    Lk.method.version.nodes, .leaves, .leafsize, .depth, .sahcost
+    Lk.method.version.interior, .binaryinterior   interior nodes, of the
+                                            tree and of a binary tree of its leaves
+    Lk.method.version.camera                Mrays/s
+    Lk.method.version.camera.ratio          speed / the first version's (median of rounds)
+    Lk.method.version.camera.us             microseconds per ray
+    Lk.method.final.camera.gain             percent faster than the adopted version
+    Lk.sah.final.build.percent              build time, percent of the first version's
+    Lk.sah.first.nodes.perfinal             the first tree's nodes per node of the final one
+    count.ray set.version.instructions      per ray (callgrind), also
+                                            .mispredicted, .misses
+    count.ray set.first.perfinal            the first version's instructions per final one's
+    count.rays, count.rows, count.cache     the samples and the simulated cache
+    setup.processor, setup.compiler, setup.flags, setup.passes, setup.builds,
+    setup.rays.camera, setup.rays.incoherent   the sizes of the ray sets
+"""
+import json
+import math
+import os
+import re
+import sys
+
+RAY_SETS = {'rays_primary.bin': 'camera', 'rays_incoherent.bin': 'incoherent'}
+METHODS = {'SAH': 'sah', 'HLBVH': 'hlbvh', 'Middle': 'middle', 'EqualCounts': 'equalcounts'}
+SPAN = re.compile(r'\[([A-Za-z0-9_.]+)\]\{\.m\}')
+
+
+def fail(message):
+    sys.exit('book_numbers: ' + message)
+
+
+def thousands(n):
+    return '{:,}'.format(int(round(n)))
+
+
+def significant(x, digits=3):
+    """x to `digits` significant digits, with thousands separators: 0.609, 12.9, 1,096."""
+    if x <= 0:
+        fail('cannot print %r as a measurement' % x)
+    for _ in range(2):   # once more if rounding reached the next power of ten
+        if x >= 10 ** (digits - 1):
+            return thousands(x)
+        decimals = digits - 1 - math.floor(math.log10(x))
+        x = round(x, decimals)
+    return '%.*f' % (decimals, x)
+
+
+def mesh_key(name, path):
+    m = re.fullmatch(r'bunny_L(\d)', name)
+    if not m:
+        fail('%s: a mesh named %r (bunny_L0 ... bunny_L4 expected)' % (path, name))
+    return 'L' + m.group(1)
+
+
+def values(data, path='the measurements'):
+    """Every printable name -> its text."""
+    out = {}
+    try:
+        setup = data['setup']
+        out['setup.processor'] = setup['processor']
+        out['setup.compiler'] = setup['compiler'].replace('GCC ', 'GCC\u00a0')
+        out['setup.flags'] = setup['cxxflags']
+        out['setup.passes'] = str(setup['passes'])
+        out['setup.builds'] = str(setup['build_repetitions'])
+        by = {}
+        for r in data['results']:
+            mesh, method = mesh_key(r['mesh'], path), METHODS[r['method']]
+            by[mesh, method, r['version']] = r
+            out[mesh + '.triangles'] = thousands(r['triangles'])
+            base = '%s.%s.%s' % (mesh, method, r['version'])
+            out[base + '.build'] = significant(r['build_ms'])
+            out[base + '.nodes'] = thousands(r['nodes'])
+            out[base + '.leaves'] = thousands(r['leaves'])
+            out[base + '.leafsize'] = '%.2f' % r['leaf_size']
+            out[base + '.depth'] = str(r['depth'])
+            # Interior nodes: the tree's; those of the binary tree that a
+            # tree of these leaves collapses (a binary tree of k leaves has k - 1).
+            out[base + '.interior'] = thousands(r['nodes'] - r['leaves'])
+            out[base + '.binaryinterior'] = thousands(r['leaves'] - 1)
+            out[base + '.sahcost'] = significant(r['sah_cost'])
+            for ray_file, rays in RAY_SETS.items():
+                v = r['rays'][ray_file]
+                out['%s.%s' % (base, rays)] = significant(v['mrays_per_s'])
+                out['%s.%s.ratio' % (base, rays)] = '%.2f' % v['ratio']
+                out['%s.%s.us' % (base, rays)] = significant(1 / v['mrays_per_s'], 2)
+                out['%s.hits.%s' % (mesh, rays)] = thousands(v['hits'])
+        for (mesh, method, version), r in by.items():
+            if version != 'final' or (mesh, method, 'adopted') not in by:
+                continue
+            adopted = by[mesh, method, 'adopted']
+            first = by[mesh, method, 'first']
+            for ray_file, rays in RAY_SETS.items():
+                gain = r['rays'][ray_file]['ratio'] / adopted['rays'][ray_file]['ratio']
+                out['%s.%s.final.%s.gain' % (mesh, method, rays)] = '%.0f' % (100 * (gain - 1))
+            out['%s.%s.final.build.percent' % (mesh, method)] = \
+                '%.0f' % (100 * r['build_ms'] / first['build_ms'])
+            out['%s.%s.first.nodes.perfinal' % (mesh, method)] = \
+                '%.1f' % (first['nodes'] / r['nodes'])
+        counts = data['counts']
+        out['count.rays'] = thousands(counts['rays'])
+        out['count.rows'] = '%d to %d' % (counts['camera_rows'][0], counts['camera_rows'][1] - 1)
+        size = int(counts['cache'].split(',')[0])
+        out['count.cache'] = '%d\u00a0MB' % (size // 2 ** 20)
+        for rays in RAY_SETS.values():
+            for version, c in counts[rays].items():
+                base = 'count.%s.%s' % (rays, version)
+                out[base + '.instructions'] = thousands(c['instructions'])
+                out[base + '.mispredicted'] = '%.1f' % c['mispredicted_branches']
+                out[base + '.misses'] = '%.1f' % c['cache_misses']
+            out['count.%s.first.perfinal' % rays] = '%.1f' % (
+                counts[rays]['first']['instructions'] / counts[rays]['final']['instructions'])
+        for ray_file, rays in RAY_SETS.items():
+            out['setup.rays.' + rays] = thousands(setup['rays'][ray_file])
+    except (KeyError, TypeError, IndexError, ValueError, ZeroDivisionError) as e:
+        fail('%s: not the data of tools/bench/measure.py: %s %s' % (path, type(e).__name__, e))
+    return out
+
+
+def load(path):
+    try:
+        with open(path, encoding='utf-8') as f:
+            return values(json.load(f), path)
+    except (OSError, ValueError) as e:
+        fail('%s: %s' % (path, e))
+
+
+def lua_string(text):
+    """A Lua string literal: printable ASCII as it is, every other byte as \\ddd."""
+    return '"' + ''.join(chr(b) if 32 <= b < 127 and b not in (34, 92) else '\\%03d' % b
+                         for b in text.encode('utf-8')) + '"'
+
+
+def lua(table):
+    lines = ['return {']
+    for name in sorted(table):
+        lines.append('  [%s] = %s,' % (lua_string(name), lua_string(table[name])))
+    lines.append('}')
+    return '\n'.join(lines)
+
+
+def check(table, chapters):
+    errors = []
+    for chapter in chapters:
+        with open(chapter, encoding='utf-8') as f:
+            for number, line in enumerate(f, 1):
+                for m in SPAN.finditer(line):
+                    if m.group(1) not in table:
+                        errors.append('%s:%d: no measured number named %r' %
+                                      (chapter, number, m.group(1)))
+    return errors
+
+
+def main(argv):
+    if len(argv) >= 2 and argv[0] in ('--lua', '--list', '--check'):
+        table = load(argv[1])
+        if argv[0] == '--lua' and len(argv) == 2:
+            print(lua(table))
+            return
+        if argv[0] == '--list' and len(argv) == 2:
+            for name in sorted(table):
+                print('%s\t%s' % (name, table[name]))
+            return
+        if argv[0] == '--check':
+            errors = check(table, argv[2:])
+            if errors:
+                sys.exit('\n'.join(errors))
+            return
+    sys.exit(__doc__)
+
+
+if __name__ == '__main__':
+    main(sys.argv[1:])

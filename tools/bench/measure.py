@@ -1,0 +1,198 @@
+#!/usr/bin/env python3
+"""Measure everything that chapter 7 and Appendix A quote, into one file.
+
+    tools/bench/measure.py --bench BIN --data DIR --out figures/data/bvh-measurements.json
+
+BIN is the benchmark program of Appendix A (`make bench-build` builds it),
+DIR holds the shared generator's data for subdivision levels 0 to 4
+(bunny_L0.ply ... bunny_L4.ply, rays_primary.bin, rays_incoherent.bin).
+`make book-measurements` runs it with both. In one run, one after the other:
+
+1. speeds: the benchmark with the SAH trees of the three versions on the
+   five meshes, then with the other three split methods on the bunnies
+   subdivided twice and four times (L2, L4), each with both ray sets; every
+   version's hit counts must agree, or the run fails;
+2. counts: Valgrind's callgrind, per ray, in the benchmark's tracing loop
+   (TracePass), on L2 with the SAH trees: instructions, mispredicted branches
+   and misses of a simulated 1 MB last-level cache, for 65,536 camera rays
+   (the middle 64 rows of the 1024 x 1024 image) and the first 65,536
+   incoherent rays. These do not depend on the load of the machine.
+
+The output holds the setup (processor, compiler, flags, passes, builds), the
+benchmark's results and the counts. tools/bench/book_numbers.py turns it into
+the values that the book prints and tools/bench/table.py into the plot's table.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))
+
+LEVELS = (0, 1, 2, 3, 4)
+OTHER_METHODS = 'hlbvh,middle,equalcounts'
+VERSIONS = ('first', 'adopted', 'final')
+RAY_BYTES = 24               # six float32 per ray
+CAMERA_RESOLUTION = 1024     # the shared generator's image, row-major
+SAMPLE_ROWS = (480, 544)     # the middle 64 rows
+SAMPLE_RAYS = 65536
+# The benchmarks that callgrind runs for a version: the adopted version copies
+# the first version's tree, so the first version's build runs too (callgrind
+# counts only inside TracePass, the tracing).
+FILTERS = {'first': '^bunny_L2/SAH/first/', 'adopted': '^bunny_L2/SAH/(first/build|adopted/)',
+           'final': '^bunny_L2/SAH/final/'}
+LL_CACHE = '1048576,16,64'   # size, associativity, line size of the simulated cache
+# callgrind's events, summed as the book reports them.
+COUNTS = {'instructions': ('Ir',), 'mispredicted_branches': ('Bcm', 'Bim'),
+          'cache_misses': ('ILmr', 'DLmr', 'DLmw')}
+
+
+def fail(message):
+    sys.exit('measure: ' + message)
+
+
+def run(command, what):
+    print('measure: ' + what, flush=True)
+    r = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True)
+    if r.returncode != 0:
+        fail('%s failed (exit %d):\n%s' % (what, r.returncode, r.stdout[-4000:]))
+    return r.stdout
+
+
+def processor():
+    try:
+        with open('/proc/cpuinfo', encoding='utf-8') as f:
+            for line in f:
+                if line.startswith('model name'):
+                    return line.split(':', 1)[1].strip()
+    except OSError:
+        pass
+    return 'unknown processor'
+
+
+def speeds(bench, data, tmp, passes, builds):
+    """The benchmark's results: SAH on every level, the other methods on L2, L4."""
+    rays = ['--rays', os.path.join(data, 'rays_primary.bin'),
+            '--rays', os.path.join(data, 'rays_incoherent.bin')]
+    runs = [([l for l in LEVELS], 'sah'), ([2, 4], OTHER_METHODS)]
+    setup, results = None, []
+    for i, (levels, methods) in enumerate(runs):
+        out = os.path.join(tmp, 'speeds%d.json' % i)
+        meshes = [a for l in levels
+                  for a in ('--mesh', os.path.join(data, 'bunny_L%d.ply' % l))]
+        run([bench] + meshes + rays + ['--methods', methods, '--passes', str(passes),
+                                        '--builds', str(builds), '--json', out],
+            'the benchmark, %s on levels %s' % (methods, levels))
+        with open(out, encoding='utf-8') as f:
+            part = json.load(f)
+        setup = setup or {k: part[k] for k in ('compiler', 'cxx', 'cxxflags', 'float',
+                                               'passes', 'build_repetitions')}
+        results += part['results']
+    check_hits(results)
+    return setup, results
+
+
+def check_hits(results):
+    """Every version and method must find the same hits on a mesh and ray set."""
+    seen = {}
+    for r in results:
+        for name, v in r['rays'].items():
+            key = (r['mesh'], name)
+            if seen.setdefault(key, v['hits']) != v['hits']:
+                fail('%s, %s: %s %s found %d hits, another version %d' %
+                     (r['mesh'], name, r['method'], r['version'], v['hits'], seen[key]))
+
+
+def samples(data, tmp):
+    """The ray files that callgrind traces: camera rows and incoherent rays."""
+    row = CAMERA_RESOLUTION * RAY_BYTES
+    with open(os.path.join(data, 'rays_primary.bin'), 'rb') as f:
+        f.seek(SAMPLE_ROWS[0] * row)
+        camera = f.read((SAMPLE_ROWS[1] - SAMPLE_ROWS[0]) * row)
+    with open(os.path.join(data, 'rays_incoherent.bin'), 'rb') as f:
+        incoherent = f.read(SAMPLE_RAYS * RAY_BYTES)
+    files = {}
+    for name, rays in (('camera', camera), ('incoherent', incoherent)):
+        if len(rays) != SAMPLE_RAYS * RAY_BYTES:
+            fail('%s: too few rays for a sample of %d' % (data, SAMPLE_RAYS))
+        files[name] = os.path.join(tmp, name + '_sample.bin')
+        with open(files[name], 'wb') as f:
+            f.write(rays)
+    return files
+
+
+def callgrind_totals(path):
+    events = totals = None
+    with open(path, encoding='utf-8') as f:
+        for line in f:
+            if line.startswith('events:'):
+                events = line.split()[1:]
+            elif line.startswith('summary:'):
+                totals = [int(x) for x in line.split()[1:]]
+    if not events or not totals:
+        fail('%s: no events or summary line' % path)
+    return dict(zip(events, totals))
+
+
+def counts(bench, data, tmp):
+    mesh = os.path.join(data, 'bunny_L2.ply')
+    result = {'mesh': 'bunny_L2', 'method': 'SAH', 'rays': SAMPLE_RAYS,
+              'camera_rows': list(SAMPLE_ROWS), 'cache': LL_CACHE}
+    for name, rays in samples(data, tmp).items():
+        for version in VERSIONS:
+            out = os.path.join(tmp, 'callgrind.%s.%s' % (name, version))
+            run(['valgrind', '--tool=callgrind', '--toggle-collect=*TracePass*',
+                 '--branch-sim=yes', '--cache-sim=yes', '--LL=' + LL_CACHE,
+                 '--callgrind-out-file=' + out, bench, '--mesh', mesh, '--rays', rays,
+                 '--methods', 'sah', '--passes', '1', '--builds', '1',
+                 '--benchmark_filter=' + FILTERS[version]],
+                'callgrind, %s rays, %s version' % (name, version))
+            totals = callgrind_totals(out)
+            if not totals.get('Ir'):
+                fail('callgrind counted no instructions in the %s version\'s tracing '
+                     'of the %s rays (did the benchmark skip it?)' % (version, name))
+            result.setdefault(name, {})[version] = {
+                what: sum(totals.get(e, 0) for e in events) / SAMPLE_RAYS
+                for what, events in COUNTS.items()}
+    return result
+
+
+def valgrind_version():
+    r = subprocess.run(['valgrind', '--version'], stdout=subprocess.PIPE, text=True)
+    return r.stdout.strip()
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--bench', required=True)
+    parser.add_argument('--data', required=True)
+    parser.add_argument('--out', required=True)
+    parser.add_argument('--passes', type=int, default=5)
+    parser.add_argument('--builds', type=int, default=5)
+    args = parser.parse_args()
+    for level in LEVELS:
+        if not os.path.isfile(os.path.join(args.data, 'bunny_L%d.ply' % level)):
+            fail('%s: no bunny_L%d.ply (the shared generator with --levels 0,1,2,3,4 '
+                 'writes it)' % (args.data, level))
+    with tempfile.TemporaryDirectory() as tmp:
+        setup, results = speeds(args.bench, args.data, tmp, args.passes, args.builds)
+        measured = counts(args.bench, args.data, tmp)
+    setup['processor'] = processor()
+    setup['rays'] = {name: os.path.getsize(os.path.join(args.data, name)) // RAY_BYTES
+                     for name in ('rays_primary.bin', 'rays_incoherent.bin')}
+    setup['valgrind'] = valgrind_version()
+    data = {'setup': setup, 'results': results, 'counts': measured}
+    text = json.dumps(data, indent=1, sort_keys=True)
+    tmp_out = args.out + '.tmp'
+    with open(tmp_out, 'w', encoding='utf-8') as f:
+        f.write(text + '\n')
+    os.replace(tmp_out, args.out)
+    print('measure: wrote ' + args.out)
+
+
+if __name__ == '__main__':
+    main()

@@ -63,7 +63,8 @@ deps:
 # and make deps none.
 NO_DEPS_GOALS := clean deps
 GRADE_GOALS := grade grade-batch gradescope
-DEPS_SET := $(if $(filter-out $(GRADE_GOALS),$(or $(MAKECMDGOALS),all)),,grade)
+DEPS_SET := $(if $(filter book-measurements,$(MAKECMDGOALS)),measure,$(if \
+              $(filter-out $(GRADE_GOALS),$(or $(MAKECMDGOALS),all)),,grade))
 # (MAKE_RESTARTS: make starts again once it has made the file; the check has
 # just run.)
 ifneq ($(filter-out $(NO_DEPS_GOALS),$(or $(MAKECMDGOALS),all)),)

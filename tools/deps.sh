@@ -43,6 +43,10 @@ if [ "${1:-}" != grade ]; then
     need chromium-driver  test -x /usr/bin/chromedriver
     need python3-selenium test -f /usr/lib/python3/dist-packages/selenium/__init__.py
 fi
+# make book-measurements (tools/deps.sh measure) counts instructions with callgrind.
+if [ "${1:-}" = measure ]; then
+    need valgrind command -v valgrind
+fi
 [ ${#missing[@]} -eq 0 ] && exit 0
 packages=$(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')
 if [ "$(id -u)" -eq 0 ]; then

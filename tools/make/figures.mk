@@ -19,7 +19,8 @@
 # (tools/bench/measure.py: the bench of Appendix A on the bunny subdivided 0 to
 # 4 times, then callgrind's counts per ray; about ten minutes). It needs the
 # shared generator (BENCH_GENERATOR=/path/to/gen_bench_data.py if it is not at
-# ../shared/bench/) and valgrind.
+# ../shared/bench/) and valgrind (tools/deps.sh measure, which make runs for
+# this goal).
 #
 # The book itself never renders: it includes the committed files.
 
@@ -56,8 +57,6 @@ check-figures: figures-build
 	@echo "$(BENCH_TABLE)      ok: the table of $(BENCH_LEVELS_JSON)"
 
 book-measurements: bench-build
-	@command -v valgrind > /dev/null || \
-	    { echo "make book-measurements: needs valgrind (apt-get install valgrind)" >&2; exit 1; }
 	python3 $(BENCH_GENERATOR) --out $(BENCH_LEVELS_DATA) --levels 0,1,2,3,4
 	python3 tools/bench/measure.py --bench $(BENCH_BIN) --data $(BENCH_LEVELS_DATA) \
 	    --out $(BENCH_LEVELS_JSON)

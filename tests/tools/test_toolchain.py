@@ -554,7 +554,8 @@ class WeaveTest(unittest.TestCase):
         # The page layout keeps lines with the header and footer by number.
         result = self.weave('# Ch\n\n```cpp\n<<lrt/x.h>>=\nint a;\n\nint b;\n@\n```\n')
         self.assertEqual(result.returncode, 0, result.stderr)
-        self.assertIn('\\begin{fragment}{chunk:1.1}{3}\\fragheader{chunk:1.1}', result.stdout)
+        # Line 2 is blank, and blank lines do not count among those kept.
+        self.assertIn('\\begin{fragment}{chunk:1.1}{3}{2}\\fragheader{chunk:1.1}', result.stdout)
 
     def test_caret_in_code_is_the_ascii_character(self):
         # \\^{} is a circumflex accent over nothing, a raised hat; \\lrtcaret{}
@@ -614,15 +615,18 @@ class LayoutCheckTest(unittest.TestCase):
     """tools/book/layout_check.py on layout records written by hand."""
 
     @staticmethod
-    def fragment(label, pages, footer=None):
+    def fragment(label, pages, footer=None, blank=()):
         """The records of a fragment whose line i is on page pages[i - 1]
         (the header on the first line's page, the footer on the last's unless
-        given), as tools/book/preamble.tex writes them: only the first and
-        last three lines have records."""
+        given) and blank where i is in blank, as tools/book/preamble.tex
+        writes them: only the lines up to the third that is not blank, and
+        from the third from the end, have records."""
         n = len(pages)
+        code = [i for i in range(1, n + 1) if i not in blank]
+        first, last = code[min(2, len(code) - 1)], code[max(-3, -len(code))]
         events = [('header', (label, n), pages[0])]
-        events += [('line', (label, i), pages[i - 1]) for i in range(1, n + 1)
-                   if i <= 3 or i > n - 3]
+        events += [('blank' if i in blank else 'line', (label, i), pages[i - 1])
+                   for i in range(1, n + 1) if i <= first or i >= last]
         return events + [('footer', label, footer or pages[-1])]
 
     WHOLE = [('header', ('chunk:2.1', 7), '10')] + \
@@ -669,6 +673,22 @@ class LayoutCheckTest(unittest.TestCase):
             'page 21 opens with only 1 line of fragment 3.4 before its footer; '
             'line 4 is on page 20'])
 
+    def test_blank_lines_do_not_count(self):
+        # A blank line and two lines of code are two lines of code.
+        self.assertEqual(self.problems(self.fragment('chunk:3.7', ['97'] * 10 + ['98'] * 3,
+                                                     blank={11})), [
+            'page 98 opens with only 2 lines of fragment 3.7 before its footer; '
+            'line 10 is on page 97'])
+        self.assertEqual(self.problems(self.fragment('chunk:3.7', ['97', '97', '98', '98'] +
+                                                     ['98'] * 9, blank={2})), [
+            'page 97 ends with the header of fragment 3.7 and only 1 line of its code; '
+            'line 3 is on page 98'])
+        # With a third line of code, or blank lines inside the ones kept, it is fine.
+        self.assertEqual(self.problems(self.fragment('chunk:3.7', ['97'] * 9 + ['98'] * 4,
+                                                     blank={11})), [])
+        self.assertEqual(self.problems(self.fragment('chunk:3.7', ['97'] * 4 + ['98'] * 6,
+                                                     blank={2, 5})), [])
+
     def test_short_fragment_cut_in_two(self):
         # Two lines cannot be cut without leaving fewer than three at an end.
         self.assertEqual(self.problems(self.fragment('chunk:2.1', ['10', '11'])), [
@@ -710,7 +730,7 @@ class LayoutCheckTest(unittest.TestCase):
         events = self.WHOLE[:2] + self.WHOLE[4:]
         problems = self.problems(events)
         self.assertEqual(len(problems), 1)
-        self.assertIn('fragment 2.1: no record of its line(s) 2, 3', problems[0])
+        self.assertIn('fragment 2.1: no record of its line 2 ', problems[0])
         problems = self.problems(self.WHOLE[:-1])
         self.assertEqual(len(problems), 1)
         self.assertIn('fragment 2.1: no record of its footer', problems[0])
@@ -745,9 +765,10 @@ def layout_fixture(setting):
     """A chapter of 24 fragments of 2 to 9 lines between paragraphs of random
     length, one of 90 lines after a figure too tall for the rest of its page,
     a fourth-level heading that a reference cites, and then fragments of 12
-    lines, each on a new page below a space that leaves 4 points less room
-    than the one before, so that some page has to break each fragment at
-    every line (or before it), set as LAYOUT_SETTINGS[setting] says."""
+    lines, the tenth blank, each on a new page below a space that leaves 4
+    points less room than the one before, so that some page has to break
+    each fragment at every line (or before it), set as LAYOUT_SETTINGS[setting]
+    says."""
     rnd = random.Random(7)
     out = ['# Fixture {#sec:fixture}', '']
     if LAYOUT_SETTINGS[setting]:
@@ -771,7 +792,8 @@ def layout_fixture(setting):
         uses.append('Cut %d' % k)
         out += ['```{=latex}', '\\clearpage\\vspace*{\\dimexpr\\textheight-%dpt\\relax}' % room,
                 '```', '', '```cpp', '<<Cut %d>>=' % k]
-        out += ['int c%d_%d = %d;' % (k, i, i) for i in range(12)] + ['@', '```', '']
+        out += ['int c%d_%d = %d;' % (k, i, i) if i != 9 else '' for i in range(12)]
+        out += ['@', '```', '']
     out += ['```cpp', '<<lrt/fixture.h>>='] + ['<<%s>>' % u for u in uses] + ['@', '```', '']
     return '\n'.join(out)
 
@@ -839,7 +861,7 @@ class LayoutFixtureTest(unittest.TestCase):
                                      r'1\.\d+ and only 2 lines of its code; line 3 is on '
                                      r'page \d+$', m) for m in messages), messages)
         self.assertTrue(any(re.match(r'layout: page \d+ opens with only 2 lines of fragment '
-                                     r'1\.\d+ before its footer; line 10 is on page \d+$', m)
+                                     r'1\.\d+ before its footer; line 9 is on page \d+$', m)
                             for m in messages), messages)
         # Two lines are kept, never one.
         self.assertFalse([m for m in messages if 'only 1 line' in m], messages)

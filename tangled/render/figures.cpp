@@ -335,8 +335,8 @@ int main(int argc, char **argv) {
                                         "listed in render/figures.cpp");
         if (failures > 0) {
             std::fprintf(stderr, "figures: %d figure(s) differ from the "
-                         "images in %s by more than the tolerance\n",
-                         failures, checkDir.c_str());
+                         "images in %s, in size or by more than the "
+                         "tolerance\n", failures, checkDir.c_str());
             return 1;
         }
     } catch (const std::exception &e) {

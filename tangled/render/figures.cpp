@@ -304,7 +304,7 @@ int main(int argc, char **argv) {
             Image image = f.render();
             std::chrono::duration<double, std::milli> ms =
                 std::chrono::steady_clock::now() - start;
-            // Write image or compare it with the committed file
+            // Write the image or compare it with the stored one
             if (!outDir.empty()) {
                 std::string file = outDir + "/" + f.name + ".png";
                 image.WritePNG(file);
@@ -312,15 +312,15 @@ int main(int argc, char **argv) {
                             image.Width(), image.Height(), ms.count(), file.c_str());
             } else {
                 std::string file = checkDir + "/" + f.name + ".png";
-                Image committed = Image::ReadPNG(file);
-                if (committed.Width() != image.Width() ||
-                    committed.Height() != image.Height()) {
+                Image stored = Image::ReadPNG(file);
+                if (stored.Width() != image.Width() ||
+                    stored.Height() != image.Height()) {
                     std::printf("%-24s DIFFERS: %s is %dx%d, the rendering %dx%d\n",
-                                f.name.c_str(), file.c_str(), committed.Width(),
-                                committed.Height(), image.Width(), image.Height());
+                                f.name.c_str(), file.c_str(), stored.Width(),
+                                stored.Height(), image.Width(), image.Height());
                     ++failures;
                 } else {
-                    ImageDifference d = Compare(image, committed);
+                    ImageDifference d = Compare(image, stored);
                     std::printf("%-24s %s: max %d, mean %.3f, %.3f%% of pixels > 16 "
                                 "(%.0f ms)\n", f.name.c_str(),
                                 d.Acceptable() ? "ok" : "DIFFERS", d.maxDifference,
@@ -334,9 +334,9 @@ int main(int argc, char **argv) {
             throw std::invalid_argument("unknown figure name; the figures are "
                                         "listed in render/figures.cpp");
         if (failures > 0) {
-            std::fprintf(stderr, "figures: %d figure(s) differ from %s; if the "
-                         "change is intended, run make figures and commit "
-                         "them\n", failures, checkDir.c_str());
+            std::fprintf(stderr, "figures: %d figure(s) differ from the "
+                         "images in %s, in size or by more than the "
+                         "tolerance\n", failures, checkDir.c_str());
             return 1;
         }
     } catch (const std::exception &e) {

@@ -554,7 +554,8 @@ class WeaveTest(unittest.TestCase):
         # The page layout keeps lines with the header and footer by number.
         result = self.weave('# Ch\n\n```cpp\n<<lrt/x.h>>=\nint a;\n\nint b;\n@\n```\n')
         self.assertEqual(result.returncode, 0, result.stderr)
-        self.assertIn('\\begin{fragment}{chunk:1.1}{3}\\fragheader{chunk:1.1}', result.stdout)
+        # Line 2 is blank, and blank lines do not count among those kept.
+        self.assertIn('\\begin{fragment}{chunk:1.1}{3}{2}\\fragheader{chunk:1.1}', result.stdout)
 
     def test_caret_in_code_is_the_ascii_character(self):
         # \\^{} is a circumflex accent over nothing, a raised hat; \\lrtcaret{}
@@ -613,27 +614,92 @@ class WeaveTest(unittest.TestCase):
 class LayoutCheckTest(unittest.TestCase):
     """tools/book/layout_check.py on layout records written by hand."""
 
-    WHOLE = [('header', 'chunk:2.1', '10'), ('first', 'chunk:2.1', '10'),
-             ('last', 'chunk:2.1', '11'), ('footer', 'chunk:2.1', '11')]
+    @staticmethod
+    def fragment(label, pages, footer=None, blank=()):
+        """The records of a fragment whose line i is on page pages[i - 1]
+        (the header on the first line's page, the footer on the last's unless
+        given) and blank where i is in blank, as tools/book/preamble.tex
+        writes them: only the lines up to the third that is not blank, and
+        from the third from the end, have records."""
+        n = len(pages)
+        code = [i for i in range(1, n + 1) if i not in blank]
+        first, last = code[min(2, len(code) - 1)], code[max(-3, -len(code))]
+        events = [('header', (label, n), pages[0])]
+        events += [('blank' if i in blank else 'line', (label, i), pages[i - 1])
+                   for i in range(1, n + 1) if i <= first or i >= last]
+        return events + [('footer', label, footer or pages[-1])]
+
+    WHOLE = [('header', ('chunk:2.1', 7), '10')] + \
+        [('line', ('chunk:2.1', i), '10') for i in (1, 2, 3)] + \
+        [('line', ('chunk:2.1', i), '11') for i in (5, 6, 7)] + \
+        [('footer', 'chunk:2.1', '11')]
 
     def problems(self, events, labels=None):
         return layout_check.check(events, labels or {})
 
     def test_a_fragment_across_pages_is_fine(self):
         self.assertEqual(self.problems(self.WHOLE), [])
+        self.assertEqual(self.problems(self.fragment('chunk:2.2', ['10'] * 3 + ['11'] * 3)),
+                         [])
+        # Short fragments kept on one page have fewer records, all checked.
+        self.assertEqual(self.problems(self.fragment('chunk:2.3', ['12'] * 2)), [])
 
     def test_stranded_header(self):
-        events = [('header', 'chunk:2.1', '10'), ('first', 'chunk:2.1', '11'),
-                  ('last', 'chunk:2.1', '11'), ('footer', 'chunk:2.1', '11')]
+        events = self.fragment('chunk:2.1', ['11'] * 4)
+        events[0] = ('header', ('chunk:2.1', 4), '10')
         self.assertEqual(self.problems(events), [
             'page 10 ends with the header of fragment 2.1, whose first lines of code '
             'are on page 11'])
 
     def test_stranded_footer(self):
-        events = self.WHOLE[:3] + [('footer', 'chunk:2.1', '12')]
-        self.assertEqual(self.problems(events), [
+        self.assertEqual(self.problems(self.fragment('chunk:2.1', ['11'] * 4, footer='12')), [
             'page 12 opens with the footer of fragment 2.1, cut from its last lines of '
             'code on page 11'])
+
+    def test_header_with_fewer_than_three_lines_ends_a_page(self):
+        self.assertEqual(self.problems(self.fragment('chunk:2.1', ['10'] * 2 + ['11'] * 6)), [
+            'page 10 ends with the header of fragment 2.1 and only 2 lines of its code; '
+            'line 3 is on page 11'])
+        self.assertEqual(self.problems(self.fragment('chunk:2.1', ['10'] + ['11'] * 6)), [
+            'page 10 ends with the header of fragment 2.1 and only 1 line of its code; '
+            'line 2 is on page 11'])
+
+    def test_page_opening_with_fewer_than_three_lines_and_a_footer(self):
+        # As on pages 54, 62, 73, ... of the book before it kept three lines.
+        self.assertEqual(self.problems(self.fragment('chunk:2.1', ['10'] * 6 + ['11'] * 2)), [
+            'page 11 opens with only 2 lines of fragment 2.1 before its footer; '
+            'line 6 is on page 10'])
+        self.assertEqual(self.problems(self.fragment('chunk:3.4', ['20'] * 4 + ['21'])), [
+            'page 21 opens with only 1 line of fragment 3.4 before its footer; '
+            'line 4 is on page 20'])
+
+    def test_blank_lines_do_not_count(self):
+        # A blank line and two lines of code are two lines of code.
+        self.assertEqual(self.problems(self.fragment('chunk:3.7', ['97'] * 10 + ['98'] * 3,
+                                                     blank={11})), [
+            'page 98 opens with only 2 lines of fragment 3.7 before its footer; '
+            'line 10 is on page 97'])
+        self.assertEqual(self.problems(self.fragment('chunk:3.7', ['97', '97', '98', '98'] +
+                                                     ['98'] * 9, blank={2})), [
+            'page 97 ends with the header of fragment 3.7 and only 1 line of its code; '
+            'line 3 is on page 98'])
+        # With a third line of code, or blank lines inside the ones kept, it is fine.
+        self.assertEqual(self.problems(self.fragment('chunk:3.7', ['97'] * 9 + ['98'] * 4,
+                                                     blank={11})), [])
+        self.assertEqual(self.problems(self.fragment('chunk:3.7', ['97'] * 4 + ['98'] * 6,
+                                                     blank={2, 5})), [])
+
+    def test_short_fragment_cut_in_two(self):
+        # Two lines cannot be cut without leaving fewer than three at an end.
+        self.assertEqual(self.problems(self.fragment('chunk:2.1', ['10', '11'])), [
+            'page 10 ends with the header of fragment 2.1 and only 1 line of its code; '
+            'line 2 is on page 11',
+            'page 11 opens with only 1 line of fragment 2.1 before its footer; '
+            'line 1 is on page 10'])
+
+    def test_a_long_fragment_may_run_over_several_pages(self):
+        self.assertEqual(self.problems(self.fragment('chunk:2.1', ['10'] * 3 + ['11'] * 50 +
+                                                     ['12'] * 3)), [])
 
     def test_float_inside_a_fragment(self):
         events = self.WHOLE[:2] + [('float', 'figure 2.4', '11')] + self.WHOLE[2:] + \
@@ -661,21 +727,52 @@ class LayoutCheckTest(unittest.TestCase):
             'page 118: figure 3.3 (fig:disks) is never cited'])
 
     def test_missing_record_of_a_fragment(self):
-        events = self.WHOLE[:1] + self.WHOLE[3:]
+        events = self.WHOLE[:2] + self.WHOLE[4:]
         problems = self.problems(events)
         self.assertEqual(len(problems), 1)
-        self.assertIn('fragment 2.1: no first or last', problems[0])
+        self.assertIn('fragment 2.1: no record of its line 2 ', problems[0])
+        problems = self.problems(self.WHOLE[:-1])
+        self.assertEqual(len(problems), 1)
+        self.assertIn('fragment 2.1: no record of its footer', problems[0])
+
+    def test_reads_the_records_that_the_preamble_writes(self):
+        tmp = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, tmp)
+        path = os.path.join(tmp, 'book.layout')
+        with open(path, 'w') as f:
+            f.write('header chunk:2.1 7 10\nline chunk:2.1 1 10\nfloat figure 2.1 11\n'
+                    'footer chunk:2.1 11\ncite fig:x 9\n')
+        self.assertEqual(layout_check.read_events(path), [
+            ('header', ('chunk:2.1', 7), '10'), ('line', ('chunk:2.1', 1), '10'),
+            ('float', 'figure 2.1', '11'), ('footer', 'chunk:2.1', '11'),
+            ('cite', 'fig:x', '9')])
+        with open(path, 'w') as f:
+            f.write('header chunk:2.1 10\n')
+        with self.assertRaises(SystemExit) as raised:
+            layout_check.read_events(path)
+        self.assertIn('book.layout:1: cannot read this layout line', str(raised.exception))
 
 
-def layout_fixture(keep):
+# How the fixture book sets its fragments: as the book does; without the keep
+# rules (\\lrtkeepfalse), as the book was set before it kept fragments whole;
+# and keeping two lines at either end where the rule is three (the book kept
+# two with the footer before, and a page opened with two lines and a footer).
+LAYOUT_SETTINGS = {'kept': '', 'loose': '\\lrtkeepfalse',
+                   'two': '\\renewcommand{\\lrtkeepfirst}{2}\\renewcommand{\\lrtkeeplast}{2}'}
+
+
+def layout_fixture(setting):
     """A chapter of 24 fragments of 2 to 9 lines between paragraphs of random
     length, one of 90 lines after a figure too tall for the rest of its page,
-    and a fourth-level heading that a reference cites. With keep false it
-    turns the keep rules off (\\lrtkeepfalse), as the book was set before."""
+    a fourth-level heading that a reference cites, and then fragments of 12
+    lines, the tenth blank, each on a new page below a space that leaves 4
+    points less room than the one before, so that some page has to break
+    each fragment at every line (or before it), set as LAYOUT_SETTINGS[setting]
+    says."""
     rnd = random.Random(7)
     out = ['# Fixture {#sec:fixture}', '']
-    if not keep:
-        out += ['```{=latex}', '\\lrtkeepfalse', '```', '']
+    if LAYOUT_SETTINGS[setting]:
+        out += ['```{=latex}', LAYOUT_SETTINGS[setting], '```', '']
     out += ['## Section', '', '### Subsection', '', '#### Paragraph {#sec:paragraph}', '',
             'See @sec:paragraph.', '']
     words = 'the ray meets the box where its slabs overlap and the test says so'.split()
@@ -691,13 +788,20 @@ def layout_fixture(keep):
         uses.append('Piece %d' % k)
         out += ['```cpp', '<<Piece %d>>=' % k]
         out += ['int v%d_%d = %d;' % (k, i, i) for i in range(lines)] + ['@', '```', '']
+    for k, room in enumerate(range(200, 20, -4)):
+        uses.append('Cut %d' % k)
+        out += ['```{=latex}', '\\clearpage\\vspace*{\\dimexpr\\textheight-%dpt\\relax}' % room,
+                '```', '', '```cpp', '<<Cut %d>>=' % k]
+        out += ['int c%d_%d = %d;' % (k, i, i) if i != 9 else '' for i in range(12)]
+        out += ['@', '```', '']
     out += ['```cpp', '<<lrt/fixture.h>>='] + ['<<%s>>' % u for u in uses] + ['@', '```', '']
     return '\n'.join(out)
 
 
 class LayoutFixtureTest(unittest.TestCase):
     """The woven fixture book passes the layout check; the same book set
-    without the keep rules fails it, naming pages and fragments."""
+    without the keep rules, or keeping too few lines, fails it, naming pages
+    and fragments."""
 
     @classmethod
     def setUpClass(cls):
@@ -707,20 +811,25 @@ class LayoutFixtureTest(unittest.TestCase):
             f.write('---\ntitle: "Layout fixture"\ndocumentclass: book\n'
                     'classoption: [11pt, openany]\n---\n')
         cls.results = {}
-        for keep in (True, False):
-            chapter = os.path.join(cls.tmp, '01-fixture-%s.md' % keep)
+        for setting in LAYOUT_SETTINGS:
+            chapter = os.path.join(cls.tmp, '01-fixture-%s.md' % setting)
             with open(chapter, 'w') as f:
-                f.write(layout_fixture(keep))
-            out = os.path.join(cls.tmp, 'out-%s' % keep)
-            cls.results[keep] = (out, run([os.path.join(TOOLS, 'book', 'weave.sh'), out, cls.book,
-                                           chapter]))
+                f.write(layout_fixture(setting))
+            out = os.path.join(cls.tmp, 'out-%s' % setting)
+            cls.results[setting] = (out, run([os.path.join(TOOLS, 'book', 'weave.sh'), out,
+                                              cls.book, chapter]))
 
     @classmethod
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp)
 
+    def messages(self, setting):
+        _, result = self.results[setting]
+        self.assertNotEqual(result.returncode, 0)
+        return [l for l in result.stderr.splitlines() if l.startswith('layout: ')]
+
     def test_book_kept_whole_passes(self):
-        out, result = self.results[True]
+        out, result = self.results['kept']
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertNotIn('layout:', result.stderr)
         text = run(['pdftotext', os.path.join(out, 'book.pdf'), '-']).stdout
@@ -728,18 +837,34 @@ class LayoutFixtureTest(unittest.TestCase):
         # numbered section around it.
         self.assertIn('See Section 1.1.1.', text)
         self.assertNotIn('1.1.1.1', text)
+        # The fragments below the spaces were cut, at three lines from either end.
+        with open(os.path.join(out, 'book.layout')) as f:
+            records = [line.split() for line in f]
+        header_page = {r[1]: r[3] for r in records if r[0] == 'header'}
+        cut = {r[1] for r in records if r[0] == 'line' and int(r[1].split('.')[1]) > 24
+               and r[3] != header_page[r[1]]}
+        self.assertGreater(len(cut), 10)
 
     def test_book_set_loose_fails_naming_page_and_fragment(self):
-        _, result = self.results[False]
-        self.assertNotEqual(result.returncode, 0)
-        messages = [l for l in result.stderr.splitlines() if l.startswith('layout: ')]
+        messages = self.messages('loose')
         self.assertTrue(any(re.match(r'layout: page \d+ ends with the header of fragment '
                                      r'1\.\d+, whose first lines of code are on page \d+$',
-                                     m) for m in messages), result.stderr)
+                                     m) for m in messages), messages)
         self.assertTrue(any(re.match(r'layout: page \d+ opens with the footer of fragment '
-                                     r'1\.\d+', m) for m in messages), result.stderr)
+                                     r'1\.\d+', m) for m in messages), messages)
         self.assertTrue(any(re.match(r'layout: page \d+: figure 1\.1 lands inside fragment '
-                                     r'1\.13 ', m) for m in messages), result.stderr)
+                                     r'1\.13 ', m) for m in messages), messages)
+
+    def test_book_keeping_two_lines_fails_naming_page_and_fragment(self):
+        messages = self.messages('two')
+        self.assertTrue(any(re.match(r'layout: page \d+ ends with the header of fragment '
+                                     r'1\.\d+ and only 2 lines of its code; line 3 is on '
+                                     r'page \d+$', m) for m in messages), messages)
+        self.assertTrue(any(re.match(r'layout: page \d+ opens with only 2 lines of fragment '
+                                     r'1\.\d+ before its footer; line 9 is on page \d+$', m)
+                            for m in messages), messages)
+        # Two lines are kept, never one.
+        self.assertFalse([m for m in messages if 'only 1 line' in m], messages)
 
     def test_citation_of_a_missing_key_fails(self):
         chapter = os.path.join(self.tmp, '01-cite.md')

@@ -2,28 +2,37 @@
 """layout_check.py BOOK.layout: fail when a fragment came apart on the page.
 
 tools/book/preamble.tex writes BOOK.layout while pdflatex ships out the pages: one
-line "kind what page" per event, in the order of the pages, so in reading
-order (a page's top floats before its text):
+line per event, in the order of the pages, so in reading order (a page's top
+floats before its text):
 
-    header chunk:2.11 10     a fragment's header line
-    first chunk:2.11 10      the last of the code lines kept with the header
-    last chunk:2.11 11       the first of the code lines kept with the footer
+    header chunk:2.11 7 10   a fragment's header line, its 7 lines of code, page 10
+    line chunk:2.11 1 10     line 1 of its code is on page 10 (one such record
+                             for each line up to the MIN_LINES-th that is not
+                             blank, and from the MIN_LINES-th from the end)
+    blank chunk:2.11 2 10    line 2 is on page 10 and is blank
     footer chunk:2.11 11     its "Used in / Defines" lines
     float figure 2.1 67      a figure or table
     cite fig:bvh-splits 211  a reference to a float (in the main matter)
 
 The check fails, naming the page and the fragment, on a header that ends a
-page without its first lines of code, on a footer that opens a page without
-the last lines, on a float between a fragment's header and its footer, and on
-a float printed more than MAX_FLOAT_DISTANCE pages after its first citation
-or more than a page before it, and on a float with a label that nothing cites.
-The labels of the floats come from BOOK.aux.
+page without its first MIN_LINES lines of code (or all of them, in a shorter
+fragment), on a footer that opens a page without the last MIN_LINES lines
+(blank lines of code do not count), on
+a float between a fragment's header and its footer, and on a float printed
+more than MAX_FLOAT_DISTANCE pages after its first citation or more than a
+page before it, and on a float with a label that nothing cites. The labels of
+the floats come from BOOK.aux.
 """
 import os
 import re
 import sys
 
 MAX_FLOAT_DISTANCE = 3
+# A fragment cut by a page break keeps at least this many lines of code
+# with its header and with its footer.
+MIN_LINES = 3
+# Records with a number: a header's number of lines, a line's number.
+NUMBERED = ('header', 'line', 'blank')
 
 
 def read_events(path):
@@ -35,7 +44,9 @@ def read_events(path):
                 continue
             if parts[0] == 'float' and len(parts) == 4:
                 events.append(('float', parts[1] + ' ' + parts[2], parts[3]))
-            elif len(parts) == 3:
+            elif parts[0] in NUMBERED and len(parts) == 4 and parts[2].isdigit():
+                events.append((parts[0], (parts[1], int(parts[2])), parts[3]))
+            elif parts[0] not in NUMBERED and len(parts) == 3:
                 events.append(tuple(parts))
             else:
                 raise SystemExit('%s:%d: cannot read this layout line: %r' %
@@ -61,21 +72,47 @@ def page_number(page):
     return int(page) if page.isdigit() else None
 
 
+def lines(count):
+    return '%d line%s' % (count, '' if count == 1 else 's')
+
+
+def end_lines(numbers, at, blank):
+    """The lines of numbers, in order, up to the MIN_LINES-th that is not
+    blank, and the first of them that has no record (or None)."""
+    taken, seen = [], 0
+    for n in numbers:
+        if n not in at:
+            return taken, n
+        taken.append(n)
+        if n not in blank:
+            seen += 1
+            if seen == MIN_LINES:
+                break
+    return taken, None
+
+
 def check(events, labels):
     problems = []
-    fragments = {}     # label -> {kind: page}
+    fragments = {}     # label -> {'lines': n, 'header': page, 'footer': page, 'at', 'blank'}
     order = []
     open_fragment = None
     floats = []        # (name, page, fragment it landed in or None)
     first_cite = {}
     for kind, what, page in events:
         if kind == 'header':
-            fragments[what] = {'header': page}
-            order.append(what)
-            open_fragment = what
-        elif kind in ('first', 'last', 'footer'):
-            fragments.setdefault(what, {})[kind] = page
-            if kind == 'footer' and open_fragment == what:
+            label, count = what
+            fragments[label] = {'header': page, 'lines': count, 'at': {}, 'blank': set()}
+            order.append(label)
+            open_fragment = label
+        elif kind in ('line', 'blank'):
+            label, number = what
+            record = fragments.setdefault(label, {'at': {}, 'blank': set()})
+            record['at'][number] = page
+            if kind == 'blank':
+                record['blank'].add(number)
+        elif kind == 'footer':
+            fragments.setdefault(what, {'at': {}, 'blank': set()})['footer'] = page
+            if open_fragment == what:
                 open_fragment = None
         elif kind == 'float':
             floats.append((what, page, open_fragment))
@@ -83,21 +120,41 @@ def check(events, labels):
             first_cite.setdefault(what, page)
 
     for label in order:
-        pages = fragments[label]
+        record = fragments[label]
         number = label.split(':', 1)[1]
-        missing = [k for k in ('header', 'first', 'last', 'footer') if k not in pages]
-        if missing:
-            problems.append('fragment %s: no %s in the layout record (are its lines counted '
-                            'right?)' % (number, ' or '.join(missing)))
+        count, at, blank = record['lines'], record['at'], record['blank']
+        head, head_missing = end_lines(range(1, count + 1), at, blank)
+        tail, tail_missing = end_lines(range(count, 0, -1), at, blank)
+        missing = head_missing or tail_missing
+        if 'footer' not in record or missing:
+            problems.append('fragment %s: no record of its %s in the layout (are its '
+                            'lines counted right?)' %
+                            (number, 'footer' if 'footer' not in record
+                             else 'line %d' % missing))
             continue
-        if pages['header'] != pages['first']:
+        header, footer = record['header'], record['footer']
+        # Pages only grow from line to line: the lines with the header are
+        # the first of head, those with the footer the first of tail.
+        code_lines = [n for n in head if n not in blank]
+        with_header = [n for n in code_lines if at[n] == header]
+        if at[1] != header:
             problems.append('page %s ends with the header of fragment %s, whose first '
-                            'lines of code are on page %s' %
-                            (pages['header'], number, pages['first']))
-        if pages['footer'] != pages['last']:
+                            'lines of code are on page %s' % (header, number, at[1]))
+        elif len(with_header) < len(code_lines):
+            away = code_lines[len(with_header)]
+            problems.append('page %s ends with the header of fragment %s and only %s of '
+                            'its code; line %d is on page %s' %
+                            (header, number, lines(len(with_header)), away, at[away]))
+        code_lines = [n for n in tail if n not in blank]
+        with_footer = [n for n in code_lines if at[n] == footer]
+        if at[count] != footer:
             problems.append('page %s opens with the footer of fragment %s, cut from its '
-                            'last lines of code on page %s' %
-                            (pages['footer'], number, pages['last']))
+                            'last lines of code on page %s' % (footer, number, at[count]))
+        elif len(with_footer) < len(code_lines):
+            away = code_lines[len(with_footer)]
+            problems.append('page %s opens with only %s of fragment %s before its footer; '
+                            'line %d is on page %s' %
+                            (footer, lines(len(with_footer)), number, away, at[away]))
 
     for name, page, inside in floats:
         if inside:

@@ -84,9 +84,12 @@ local function highlight(lines)
     return '\\fraguse{' .. book.ids[name] .. '}'
   end))
   local body = latex:match('\\begin{Highlighting}%[%]\n(.-)\n\\end{Highlighting}')
-  local count = 0
-  for _ in ((body or '') .. '\n'):gmatch('[^\n]*\n') do count = count + 1 end
-  return latex, count
+  local count, blank = 0, {}
+  for line in ((body or '') .. '\n'):gmatch('([^\n]*)\n') do
+    count = count + 1
+    if line:match('^%s*$') then blank[#blank + 1] = tostring(count) end
+  end
+  return latex, count, table.concat(blank, ',')
 end
 
 local function footer(chunk)
@@ -110,11 +113,11 @@ local function footer(chunk)
 end
 
 local function render_chunk(chunk)
-  local code, lines = highlight(fragments.shown_lines(chunk))
+  local code, lines, blank = highlight(fragments.shown_lines(chunk))
   local kind = chunk == book:first(chunk) and 'def' or 'cont'
   return pandoc.RawBlock('latex', table.concat({
-    string.format('\\begin{fragment}{%s}{%d}\\fragheader{%s}{%s}{%s}{%s}', chunk.label,
-                  lines, chunk.label, chunk.number, book.ids[chunk.name], kind),
+    string.format('\\begin{fragment}{%s}{%d}{%s}\\fragheader{%s}{%s}{%s}{%s}', chunk.label,
+                  lines, blank, chunk.label, chunk.number, book.ids[chunk.name], kind),
     code,
     footer(chunk) .. '\\end{fragment}'}, '\n'))
 end

@@ -41,11 +41,11 @@ local function distinct(chunks)
   return out
 end
 
--- Where a fragment goes: the file it is tangled to (a root, which no chunk
+-- Where a fragment goes: the library file it is tangled to (a root, which no chunk
 -- uses), else the chunks that use it. Sets entry.file or entry.used_in.
 local function destination(book, name, entry)
   if book:is_root(name) then
-    entry.file = 'tangled/' .. name
+    entry.file = name
   else
     entry.used_in = distinct(book.uses_of[name])
   end

@@ -167,7 +167,7 @@ class GroupedReferencesTest(Woven):
         result = pandoc(copy_book(tmp, lambda name, text: text.replace(
             'Pair: [@eq:one; @eq:two]', 'Pair: [@eq:one; @sec:first]')), 'latex')
         self.assertNotEqual(result.returncode, 0)
-        self.assertIn('groups a Equation with a Section', result.stderr)
+        self.assertIn('mixes kinds (Equation, Section)', result.stderr)
 
 
 class IdentifierIndexTest(Woven):

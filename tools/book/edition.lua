@@ -38,10 +38,9 @@ that the edition gives: one, @eq:a, as "Equation (2.5)", linked whole; several
 in one citation, [@eq:a; @eq:b; @eq:c], as prose, "Equations (2.5), (2.6) and
 (2.7)", each number linked; three or more sections, figures, tables or
 exercises that run in sequence as a range, "Sections 6.3-6.5" (with an en
-dash); [-@eq:a] without the noun, "(2.5)",
-where the prose names the thing itself ("the implicit equation (3.5)").
-A citation may group targets of one kind only (sections, chapters, figures,
-...).
+dash); [-@eq:a] without the noun, "(2.5)", where the prose names the thing
+itself ("the implicit equation (3.5)"). A citation may group targets of one
+kind only (sections, chapters, figures, ...).
 ]]
 
 local fragments = require('fragments')
@@ -85,8 +84,8 @@ local function references(items, bare, typeset, fail)
   local distinct, seen = {}, {}
   for _, item in ipairs(items) do
     if noun(item) ~= noun(items[1]) then
-      fail('the reference to ' .. items[1].id .. ' and ' .. item.id .. ' groups a ' ..
-           noun(items[1]) .. ' with a ' .. noun(item) .. ': write them apart')
+      fail('the citation of ' .. items[1].id .. ' and ' .. item.id .. ' mixes kinds (' ..
+           noun(items[1]) .. ', ' .. noun(item) .. '): cite them apart')
     end
     local number = item.target.number
     if not number then fail('@' .. item.id .. ': a label without a number') end
@@ -105,11 +104,12 @@ local function references(items, bare, typeset, fail)
   end
   -- Runs of three or more in sequence become ranges, except of equations:
   -- "(2.5)-(2.7)" reads as an expression, so they are listed.
+  local ranges = distinct[1].kind ~= 'eq'
   local parts, i = {}, 1
   while i <= #distinct do
     local j = i
-    while distinct[1].kind ~= 'eq' and distinct[j + 1] and follows(distinct[j].target.number,
-                                      distinct[j + 1].target.number) do
+    while ranges and distinct[j + 1] and
+          follows(distinct[j].target.number, distinct[j + 1].target.number) do
       j = j + 1
     end
     if j - i >= 2 then

@@ -92,16 +92,21 @@ local function fail(message)
   os.exit(1)
 end
 
--- "file:line" of the first line of the input that holds text (plain), so
--- that an error names the exercise's place; the input files if none does.
+-- "file:line" of the first line of the input that holds text (plain) or,
+-- for an id ("#ex-6.5"), the id followed by a space or a brace, so that an
+-- error names the exercise's place; the input files if no line does.
 local function locate(text)
+  local function holds(line)
+    if not text:match('^#') then return line:find(text, 1, true) end
+    return line:find(text .. ' ', 1, true) or line:find(text .. '}', 1, true)
+  end
   for _, file in ipairs(PANDOC_STATE.input_files) do
     local handle = io.open(file)
     if handle then
       local n = 0
       for line in handle:lines() do
         n = n + 1
-        if line:find(text, 1, true) then
+        if holds(line) then
           handle:close()
           return file .. ':' .. n
         end
@@ -142,7 +147,7 @@ local function number_exercises(doc)
       local id = div.identifier
       local number = next_number('#' .. id)
       if id ~= 'ex-' .. number then
-        fail(locate('#' .. id .. ' ') .. ': the exercise ' .. (id == '' and 'without an id' or id)
+        fail(locate('#' .. id) .. ': the exercise ' .. (id == '' and 'without an id' or id)
              .. ' is exercise ' .. number .. ' of its chapter; its id must be ex-' .. number
              .. ' (the ungraded exercises before it count too)')
       end

@@ -155,6 +155,15 @@ class LintTest(unittest.TestCase):
         self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
                              ['ex-3.1', "chapter's"])
 
+    def test_id_that_is_not_the_exercise_s_number_in_its_chapter(self):
+        # The weave numbers ungraded exercises and graded ones in one sequence
+        # (tools/book/exercises.lua): one put before ex-2.1 makes it 2.2.
+        v = Variant(self).replace(CH2, '::: {.exercise #ex-2.1',
+                                  '[Before.]{.problem #ex:before} A question.\n\n'
+                                  '::: {.exercise #ex-2.1')
+        self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),
+                             ['ex-2.1 is exercise 2.2', 'must be ex-2.2'])
+
     def test_exercise_without_hint(self):
         v = Variant(self).replace(CH2, ' hint="Add in `double`."', '')
         self.assertLintError(v, '%s:%d' % (CH2, line_of(v.text(CH2), '.exercise')),

@@ -93,6 +93,11 @@ class LintTest(unittest.TestCase):
                              'forward-ref-a.md:3',
                              ['sec:second-tree', 'later chapter',
                               'forward-ref-b.md:3'])
+        # References to exercises (tools/book/exercises.lua) too.
+        self.assertLintError(['forward-ref-a.md', 'forward-ref-b.md'], 'forward-ref-a.md:5',
+                             ['ex:later-problem', 'forward-ref-b.md:7'])
+        self.assertLintError(['forward-ref-a.md', 'forward-ref-b.md'], 'forward-ref-a.md:6',
+                             ['ex-2.1', 'forward-ref-b.md:9'])
         # The reference back to the first chapter is fine.
         self.assertNotIn('forward-ref-b.md:5',
                          lint('forward-ref-a.md', 'forward-ref-b.md').stderr)

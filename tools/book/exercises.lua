@@ -17,6 +17,21 @@ web edition (tools/book/html.lua) it becomes a div.exercise with the same parts.
 tools/book/weave.lua, so cross-references in the hint and the chunks inside the div
 are handled there like any other. tools/exercises/markup.py checks the attributes
 (make lint); this filter only shows them.
+
+It also numbers the exercises. An exercise without a grade is a paragraph
+that opens with a span of class problem holding its title:
+
+    [Parallel treelets.]{.problem #ex:parallel-treelets} The treelets ...
+
+shown as "6.1 Parallel treelets." (the number bold, the title in italics).
+The exercises of a chapter, graded or not, are numbered in the order in which
+they stand: chapter 6's are 6.1, 6.2, ... (appendices A.1, ...). A graded
+exercise's id carries its number for the grader and the tests (ex-6.5,
+Ex6_5_*), so it must be the number the count gives: one that is not stops the
+build with the file and line of the div. The numbers are left in the
+document's metadata (lrt-exercises: id -> number), from which
+tools/book/fragments.lua takes the targets of references such as @ex-6.5 and
+@ex:parallel-treelets ("Exercise 6.5").
 ]]
 
 package.path = pandoc.path.directory(PANDOC_SCRIPT_FILE) .. '/?.lua;' .. package.path
@@ -69,7 +84,114 @@ local function fragments(div)
   return names
 end
 
-function Div(div)
+-------------------------------------------------------------------------------
+-- Numbering
+
+local function fail(message)
+  io.stderr:write('exercises.lua: ' .. message .. '\n')
+  os.exit(1)
+end
+
+-- "file:line" of the first line of the input that holds text (plain) or,
+-- for an id ("#ex-6.5"), the id followed by a space or a brace, so that an
+-- error names the exercise's place; the input files if no line does.
+local function locate(text)
+  local function holds(line)
+    if not text:match('^#') then return line:find(text, 1, true) end
+    return line:find(text .. ' ', 1, true) or line:find(text .. '}', 1, true)
+  end
+  for _, file in ipairs(PANDOC_STATE.input_files) do
+    local handle = io.open(file)
+    if handle then
+      local n = 0
+      for line in handle:lines() do
+        n = n + 1
+        if holds(line) then
+          handle:close()
+          return file .. ':' .. n
+        end
+      end
+      handle:close()
+    end
+  end
+  return table.concat(PANDOC_STATE.input_files, ', ')
+end
+
+local numbers   -- id -> the number the count gives it
+
+local function number_exercises(doc)
+  numbers = {}
+  local chapter, count, appendices = 0, 0, 0
+  local function next_number(what)
+    if chapter == 0 then fail(locate(what) .. ': an exercise before the first chapter') end
+    count = count + 1
+    return chapter .. '.' .. count
+  end
+  local function record(id, number)
+    if numbers[id] then fail(locate('#' .. id) .. ': a second exercise with the id ' .. id) end
+    numbers[id] = number
+  end
+  doc:walk({
+    traverse = 'topdown',
+    Header = function(h)
+      if h.level ~= 1 then return nil end
+      if h.classes:includes('appendix') then
+        appendices, count = appendices + 1, 0
+        chapter = string.char(string.byte('A') + appendices - 1)
+      elseif not h.classes:includes('unnumbered') then
+        chapter, count = chapter + 1, 0
+      end
+    end,
+    Div = function(div)
+      if not div.classes:includes('exercise') then return nil end
+      local id = div.identifier
+      local number = next_number('#' .. id)
+      if id ~= 'ex-' .. number then
+        fail(locate('#' .. id) .. ': the exercise ' .. (id == '' and 'without an id' or id)
+             .. ' is exercise ' .. number .. ' of its chapter; its id must be ex-' .. number
+             .. ' (the ungraded exercises before it count too)')
+      end
+      record(id, number)
+    end,
+    Span = function(span)
+      if not span.classes:includes('problem') then return nil end
+      local id = span.identifier
+      if not id:match('^ex:[%w_%-]+$') then
+        fail(locate(pandoc.utils.stringify(span.content)) .. ': the exercise "' ..
+             pandoc.utils.stringify(span.content) .. '" needs an id ex:name ' ..
+             '([Title.]{.problem #ex:name})')
+      end
+      local number = next_number('#' .. id)
+      span.attributes.number = number
+      record(id, number)
+      return span
+    end,
+  })
+  local meta = {}
+  for id, number in pairs(numbers) do meta[id] = pandoc.MetaString(number) end
+  doc.meta['lrt-exercises'] = pandoc.MetaMap(meta)
+  return doc
+end
+
+-- An ungraded exercise's number and title.
+local function problem(span)
+  if not span.classes:includes('problem') then return nil end
+  local number = numbers[span.identifier]
+  if FORMAT:match('latex') then
+    local out = {pandoc.RawInline('latex', '\\phantomsection\\label{' .. span.identifier ..
+                                  '}\\textbf{' .. number .. '}'), pandoc.Space()}
+    append(out, {pandoc.Emph(span.content)})
+    return out
+  end
+  return pandoc.Span({pandoc.Strong({pandoc.Str(number)}), pandoc.Space(),
+                      pandoc.Emph(span.content)},
+                     pandoc.Attr(span.identifier, {'problem'}))
+end
+
+-------------------------------------------------------------------------------
+-- Typesetting a graded exercise
+
+local function exercise(div)
   if not div.classes:includes('exercise') then return nil end
   local id = div.identifier
   local number = id:match('^ex%-(.+)$') or id
@@ -145,3 +267,5 @@ function Div(div)
     '\\par}\\nopagebreak\\noindent\\rule{\\linewidth}{0.4pt}\\par\\bigskip')
   return blocks
 end
+
+return {{Pandoc = number_exercises}, {Div = exercise, Span = problem}}

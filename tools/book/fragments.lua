@@ -14,7 +14,9 @@ chapter 2's seventh), and records:
   book.by_name       name -> the chunks that define it, in order
   book.uses_of       name -> the chunks whose code uses it
   book.identifiers   identifier -> the chunks whose `@ %def` defines it
-  book.labels        label -> {kind = 'Section' | 'Figure' | ..., level, chapter}
+  book.labels        label -> {kind = 'Section' | 'Figure' | ..., level, chapter,
+                     number = what a reference to it shows (see edition.read)};
+                     exercises' ids too (numbered by tools/book/exercises.lua)
   book.missing       labels that cross-references name and the book lacks (see reference)
 
 with functions over them (neighbours, shown_lines, identifier_uses, ...), and
@@ -213,6 +215,10 @@ function M.read(doc, fail)
       if label then book.labels[label] = {kind = 'Equation', chapter = chapter} end
     end,
   })
+  local exercises = doc.meta['lrt-exercises']
+  for id, number in pairs(exercises or {}) do
+    book.labels[id] = {kind = 'Exercise', number = pandoc.utils.stringify(number)}
+  end
   if #read > #book.chunks then
     local missed = read[#book.chunks + 1]
     fail(string.format('chunk %d: noweb reads <<%s>> at %s:%d (tools/noweb/chunks.py) but '
@@ -366,22 +372,42 @@ function M.number_equations(inlines, render)
   return out
 end
 
--- The target of a cross-reference @sec:id, @fig:id, @eq:id or @tbl:id:
--- (label, kind, the label's record). nil for other citations, which are
--- citeproc's; a label that does not exist is added to book.missing.
-function Book:reference(cite)
-  if #cite.citations ~= 1 then return nil end
-  local id = cite.citations[1].id
+-- The targets of a cross-reference, @sec:id, @fig:id, @eq:id, @tbl:id or an
+-- exercise's @ex-6.5 or @ex:name, or of several in one citation,
+-- [@eq:a; @eq:b]: a list of {id, kind = 'sec' | 'fig' | 'eq' | 'tbl' | 'ex',
+-- target = the label's record}, in the order written, and whether the
+-- citation asks for the numbers alone ([-@eq:a], "(3.5)" rather than
+-- "Equation (3.5)"). nil for other citations, which are citeproc's; a label
+-- that does not exist is added to book.missing (and nil returned).
+local function reference_kind(id)
+  if id:match('^ex[:%-]') then return 'ex' end
   local kind = id:match('^(%a+):')
-  if not (kind == 'sec' or kind == 'fig' or kind == 'eq' or kind == 'tbl') then
-    return nil
+  if kind == 'sec' or kind == 'fig' or kind == 'eq' or kind == 'tbl' then return kind end
+end
+
+function Book:references(cite)
+  local items, others, missing = {}, {}, false
+  for _, citation in ipairs(cite.citations) do
+    local kind = reference_kind(citation.id)
+    if not kind then
+      others[#others + 1] = citation.id
+    else
+      local target = self.labels[citation.id]
+      if not target then
+        self.missing[#self.missing + 1] = citation.id
+        missing = true
+      end
+      items[#items + 1] = {id = citation.id, kind = kind, target = target}
+    end
   end
-  local target = self.labels[id]
-  if not target then
-    self.missing[#self.missing + 1] = id
-    return nil
+  if #items == 0 then return nil end
+  if #others > 0 then
+    self.fail('the citation ' .. pandoc.utils.stringify(cite) .. ' mixes cross-references ' ..
+              'with references to the bibliography (' .. table.concat(others, ', ') ..
+              '): write them apart')
   end
-  return id, kind, target
+  if missing then return nil end
+  return items, cite.citations[1].mode == 'SuppressAuthor'
 end
 
 -- Chunks whose code mentions an identifier as a whole word, other than where

@@ -28,8 +28,9 @@ Headings, figures, tables and equations carry the numbers of the PDF;
 fragments have its headers, numbers, uses and footers, and an anchor each
 (#chunk:2.7); the Index of Fragments and the Index of Identifiers, and the
 References (citeproc's), are pages at the end. Cross-references @sec:,
-@fig:, @eq:, @tbl: become links with the target's number; one to a label
-the book lacks stops the build.
+@fig:, @eq:, @tbl: and to exercises become links with the target's number,
+set as in the PDF (tools/book/edition.lua); one to a label the book lacks
+stops the build.
 ]]
 
 package.path = pandoc.path.directory(PANDOC_SCRIPT_FILE) .. '/?.lua;' .. package.path
@@ -49,19 +50,15 @@ local function fail(message)
   os.exit(1)
 end
 
-local function crossref(numbers)
-  return function(id, kind, target)
-    local number = numbers[id]
-    if not number then fail('@' .. id .. ': a label without a number') end
-    local text
-    if kind == 'eq' then
-      text = 'Equation\u{a0}(' .. number .. ')'
-    else
-      local name = kind == 'fig' and 'Figure' or kind == 'tbl' and 'Table' or target.kind
-      text = name .. '\u{a0}' .. number
-    end
-    return pandoc.Link({pandoc.Str(text)}, '#' .. id)
-  end
+-- A cross-reference's number and link (tools/book/edition.lua sets the words
+-- around them).
+local function reference_number(item)
+  local number = item.target.number
+  return {pandoc.Str(item.kind == 'eq' and '(' .. number .. ')' or number)}
+end
+
+local function reference_link(item, inlines)
+  return {pandoc.Link(inlines, '#' .. item.id)}
 end
 
 local function equation(numbers)
@@ -110,7 +107,7 @@ function Pandoc(doc)
   doc.blocks = blocks
 
   doc = edition.typeset(doc, book, {
-    equation = equation(numbers), reference = crossref(numbers),
+    equation = equation(numbers), number = reference_number, link = reference_link,
     sample_number = code.sample_number, sample_use = code.sample_use,
     sample_header = code.sample_header, sample_paragraph = code.sample_paragraph,
     inline_code = function(c) return c end, chunk = code.chunk, plain_code = code.plain_code,

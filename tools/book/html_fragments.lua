@@ -18,12 +18,14 @@ local escape, raw = text.escape, text.raw
 
 local M = {}
 
--- An identifier's anchor: "ident-" and its characters, each one that is not
--- a letter, digit or _ written as -hex (operator[] is ident-operator-5b-5d).
-local function ident_anchor(id)
-  return 'ident-' .. id:gsub('[^%w_]', function(c)
+-- The anchor of an entry of the Index of Identifiers: "ident-" and its
+-- characters, each one that is not a letter, digit or _ written as -hex
+-- (operator[] is ident-operator-5b-5d); a second identifier of the same name
+-- (tools/book/indexes.lua) adds "--" and the chapter that defines it.
+local function ident_anchor(entry)
+  return 'ident-' .. entry.id:gsub('[^%w_]', function(c)
     return string.format('-%02x', c:byte())
-  end)
+  end) .. (entry.nth > 1 and ('--' .. entry.chapter) or '')
 end
 
 local function chunk_link(chunk, html, class)
@@ -70,7 +72,8 @@ function M.new(book)
     if #about.defines > 0 then
       local ids = {}
       for _, id in ipairs(about.defines) do
-        ids[#ids + 1] = '<a class="ident" href="#' .. ident_anchor(id) .. '"><code>' ..
+        local entry = indexes.identifier_entry(book, chunk, id)
+        ids[#ids + 1] = '<a class="ident" href="#' .. ident_anchor(entry) .. '"><code>' ..
                         escape(id) .. '</code></a>'
       end
       notes[#notes + 1] = note('Defines', table.concat(ids, ', '))
@@ -132,7 +135,7 @@ function M.new(book)
   function code.identifier_index(entries)
     local out = {'<ul class="index identifier-index">'}
     for _, entry in ipairs(entries) do
-      out[#out + 1] = '<li id="' .. ident_anchor(entry.id) .. '"><code>' .. escape(entry.id) ..
+      out[#out + 1] = '<li id="' .. ident_anchor(entry) .. '"><code>' .. escape(entry.id) ..
                       '</code> ' .. link_list(entry.chunks) ..
                       (#entry.used_in > 0 and ('; used in ' .. link_list(entry.used_in)) or '') ..
                       '</li>'

@@ -3,7 +3,9 @@ html_numbers.lua: the numbers of the web edition's headings, figures, tables
 and equations, as LaTeX gives them in the PDF: chapters 1, 2, ... and
 appendices A, B, ...; sections to the third level (2.10.4); figures, tables
 and numbered equations by chapter (Figure 2.3, Equation (2.3)). The HTML
-writer knows none of these, so tools/book/html.lua counts them here.
+writer knows none of these, so tools/book/html.lua counts them here; both
+editions (tools/book/edition.lua) read them to set references in sequence as a
+range.
 ]]
 
 local fragments = require('fragments')
@@ -14,8 +16,10 @@ local M = {}
 -- attribute number), figure, table and numbered equation of doc: returns the
 -- document and label -> the number a reference to it shows. A fourth-level
 -- heading has no number of its own; a reference to it names the numbered
--- heading before it, as in the PDF.
-function M.number_labels(doc)
+-- heading before it, as in the PDF. With decorate false the headings are
+-- left alone: the PDF (tools/book/edition.lua) asks for the numbers only, to
+-- tell which references run in sequence ("Sections 6.3-6.5").
+function M.number_labels(doc, decorate)
   local numbers = {}
   local chapter, section, subsection, chapters, appendices = 0, 0, 0, 0, 0
   local current, counts = nil, {}
@@ -50,7 +54,7 @@ function M.number_labels(doc)
         shown = current
       end
       if h.identifier ~= '' then numbers[h.identifier] = current end
-      if shown then
+      if shown and decorate ~= false then
         h.content:insert(1, pandoc.Span({pandoc.Str(shown)}, {class = 'secnum'}))
         h.content:insert(2, pandoc.Space())
         h.attributes.number = shown

@@ -16,8 +16,10 @@ where they landed that tools/book/layout_check.py reads. At the end of the book
 come the References (when the book has a bibliography), an Index of Fragments
 and an Index of Identifiers (from noweb's `@ %def` lines).
 
-It also resolves cross-references written as @sec:id, @fig:id, @eq:id and
-@tbl:id, and numbered equations written as `$$ ... $$ {#eq:id}`; a reference
+It also resolves cross-references written as @sec:id, @fig:id, @eq:id,
+@tbl:id and to exercises (@ex-6.5, @ex:name; tools/book/exercises.lua numbers
+them), alone or several in one citation (as tools/book/edition.lua sets
+them), and numbered equations written as `$$ ... $$ {#eq:id}`; a reference
 to a label that does not exist stops the build (no "??" in the book). Other
 citations (@knuth1984) are left to pandoc's citeproc, which runs after it.
 
@@ -229,18 +231,27 @@ end
 -------------------------------------------------------------------------------
 -- Cross-references and equations
 
--- A reference to a fourth-level heading names the numbered section around
--- it: LaTeX numbers sections to the third level only (tools/book/preamble.tex).
-local function crossref(id, kind, target)
-  if kind == 'eq' then
-    return pandoc.RawInline('latex', '\\hyperref[' .. id .. ']{Equation~(\\ref*{' ..
-                            id .. '})}')
+-- A cross-reference's number and link (tools/book/edition.lua sets the words
+-- around them). The numbers of sections, figures, tables and equations are
+-- LaTeX's; a reference to a fourth-level heading names the numbered section
+-- around it (LaTeX numbers sections to the third level only,
+-- tools/book/preamble.tex). Exercises are numbered by tools/book/exercises.lua.
+local function reference_number(item)
+  if item.kind == 'ex' then return {pandoc.Str(item.target.number)} end
+  local ref = '\\ref*{' .. item.id .. '}'
+  if item.kind == 'eq' then ref = '(' .. ref .. ')' end
+  return {pandoc.RawInline('latex', ref)}
+end
+
+local function reference_link(item, inlines)
+  local head = '\\hyperref[' .. item.id .. ']{'
+  if item.kind == 'fig' or item.kind == 'tbl' then
+    head = '\\floatcite{' .. item.id .. '}' .. head   -- where a float is first cited
   end
-  local text = '\\hyperref[' .. id .. ']{' .. target.kind .. '~\\ref*{' .. id .. '}}'
-  if kind == 'fig' or kind == 'tbl' then
-    text = '\\floatcite{' .. id .. '}' .. text   -- where a float is first cited
-  end
-  return pandoc.RawInline('latex', text)
+  local out = pandoc.List({pandoc.RawInline('latex', head)})
+  out:extend(inlines)
+  out:insert(pandoc.RawInline('latex', '}'))
+  return out
 end
 
 local function number_equation(math, label)
@@ -289,7 +300,8 @@ end
 function Pandoc(doc)
   book = edition.read(doc, fail)
   doc = edition.typeset(doc, book, {
-    equation = number_equation, reference = crossref, sample_number = sample_number,
+    equation = number_equation, number = reference_number, link = reference_link,
+    sample_number = sample_number,
     sample_use = sample_use, sample_header = sample_header, inline_code = inline_code,
     chunk = render_chunk, plain_code = render_plain_code, figure = figure,
     sample_paragraph = sample_paragraph, Str = break_guillemets, RawBlock = figure_caption,

@@ -15,6 +15,8 @@ from tools.noweb import chunks
 from tools.noweb.chunks import FENCE
 
 FRAGMENT_SEPARATOR = ';'
+# An ungraded exercise: [Title.]{.problem #ex:name} (docs/exercises.md).
+PROBLEM = re.compile(r'\]\{[^}]*\.problem\b')
 
 
 class Section:
@@ -32,6 +34,7 @@ class Section:
 class Exercise:
     def __init__(self, ident, path, line, chapter):
         self.id, self.path, self.line, self.chapter = ident, path, line, chapter
+        self.position = None   # its number in its chapter, ungraded exercises counted
         self.points = None
         self.title = self.section_id = self.hint = None
         self.fragments = []
@@ -67,6 +70,7 @@ class Chapter:
         self.chunks = []
         self.regions = []
         self.exercises = []
+        self.count = 0         # the exercises so far, graded or not (tools/book/exercises.lua)
         self.sections = []
 
 
@@ -127,6 +131,7 @@ class Book:
                 continue
             if in_fence:
                 continue
+            chapter.count += len(PROBLEM.findall(text))
             header = HEADER.match(text)
             if header:
                 self.header(chapter, n, len(header.group(1)), header.group(2), counters)
@@ -196,6 +201,8 @@ class Book:
         path = chapter.path
         exercise = Exercise(ident, path, n, chapter.number)
         chapter.exercises.append(exercise)
+        chapter.count += 1
+        exercise.position = chapter.count
         if not ident:
             self.error(path, n, 'exercise div without an id: write {.exercise #ex-%d.K '
                        '...}' % int(chapter.number or 0))
@@ -268,6 +275,16 @@ class Book:
                            '%s:%d)' % (exercise.id, first.path, first.line))
             else:
                 by_id[exercise.id] = exercise
+        # The weave numbers a chapter's exercises, graded or not, in order; the
+        # grader and the tests know a graded one by its id, which must agree.
+        for exercise in self.exercises:
+            match = EXERCISE_ID.match(exercise.id or '')
+            if match and exercise.chapter and int(match.group(1)) == int(exercise.chapter) \
+                    and int(match.group(2)) != exercise.position:
+                number = '%d.%d' % (int(exercise.chapter), exercise.position)
+                self.error(exercise.path, exercise.line, 'the exercise %s is exercise %s of '
+                           'its chapter (the ungraded exercises before it count too): its id '
+                           'must be ex-%s' % (exercise.id, number, number))
         self.by_id = by_id
         sections = {}
         for order, chapter in enumerate(self.chapters):

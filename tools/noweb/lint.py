@@ -149,8 +149,10 @@ class Lint:
                            'one chapter: %s' % (name, ', '.join(paths)))
 
 
-LABEL_DEFINITION = re.compile(r'\{#((?:sec|fig|eq|tbl):[A-Za-z0-9_-]+)')
-LABEL_REFERENCE = re.compile(r'(?<![@\w])@((?:sec|fig|eq|tbl):[A-Za-z0-9_-]*[A-Za-z0-9])')
+# Exercises are labelled ex-6.5 (graded) and ex:name (tools/book/exercises.lua).
+LABEL_DEFINITION = re.compile(r'\{[^}]*#((?:sec|fig|eq|tbl|ex):[A-Za-z0-9_-]+|ex-\d+\.\d+)')
+LABEL_REFERENCE = re.compile(r'(?<![@\w])@((?:sec|fig|eq|tbl|ex):[A-Za-z0-9_-]*[A-Za-z0-9]'
+                             r'|ex-\d+\.\d+)')
 
 
 def check_references(lint, paths):

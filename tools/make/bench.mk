@@ -79,7 +79,10 @@ bench-build:
 bench: bench-build
 	@echo "make bench: the benchmark is Appendix A's; this book ends before it" >&2; exit 1
 else
-bench-build: $(LINTED) bench-compiler
+# In the default configuration the benchmark shares the library's build
+# directory: it waits for make's own lib, so that make -j does not tangle and
+# compile the same files twice at once.
+bench-build: $(LINTED) bench-compiler $(if $(BENCH_DEFAULT),lib)
 	$(Q)$(BENCH_ASOF) tangle
 	$(Q)$(BENCH_ASOF) -j$(JOBS) lib
 	@mkdir -p $(dir $(BENCH_BIN))

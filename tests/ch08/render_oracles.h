@@ -198,6 +198,23 @@ inline bool RandomShadowHit(std::mt19937_64 &rng, double scale, bool disk,
     return true;
 }
 
+// True, after a failure, once five more cases have been checked: a test of
+// hundreds of cases shows the first failures, not all of them.
+inline bool StopAfterFailures(size_t i) {
+    static size_t first = 0;
+    static const ::testing::TestInfo *test = nullptr;
+    const ::testing::TestInfo *now =
+        ::testing::UnitTest::GetInstance()->current_test_info();
+    if (!::testing::Test::HasFailure()) {
+        test = nullptr;
+        return false;
+    }
+    if (test != now) test = now, first = i;
+    if (i < first + 5) return false;
+    ADD_FAILURE() << "stopped after the failures above (case " << i << ")";
+    return true;
+}
+
 // The distance from one Float to the next, at x.
 inline double Ulp(Float x) {
     x = std::abs(x);

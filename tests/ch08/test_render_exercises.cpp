@@ -394,6 +394,7 @@ EXERCISE_TEST(Ex8_11_ShadowRays, ErrorBoundsStartOutsideTheErrorBox) {
     for (size_t i = 0; i < cases.size(); ++i) {
         ASSERT_EQ(got[i].rays.size(), 1u) << i;
         CheckErrorBoundsRay(hits[i], got[i].rays[0], "error bounds");
+        if (StopAfterFailures(i)) break;
         // With nothing in the way, the light arrives at the cosine.
         V3 toLight = Unit(D(cases[i].pLight) - D(cases[i].p));
         EXPECT_NEAR(got[i].color.g, Dot(toLight, hits[i].towardLight), 1e-4)
@@ -456,6 +457,7 @@ EXERCISE_TEST(Ex8_11_ShadowRays, FixedEpsilonStartsOffTheRayEquationsPoint) {
             << i;
         EXPECT_LT(s.tMax, 1) << i;
         EXPECT_GT(s.tMax, 0.999) << i;
+        if (StopAfterFailures(i)) break;
     }
 }
 

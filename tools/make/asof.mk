@@ -138,7 +138,8 @@ define compile
 @mkdir -p $(@D)
 $(call say,CXX,$(patsubst src/%,%,$(1)) ($(AS_OF)))
 $(Q)cd $(CC_DIR) && $(CCACHE_ENV) $(CCACHE) $(CXX) $(or $(3),$(CXXFLAGS)) \
-    -fdebug-prefix-map=$(abspath $(CC_DIR))=. -Isrc $(2) -MD -MP -MT $@ -c $(1) -o $(abspath $@)
+    -fdebug-prefix-map=$(abspath $(CC_DIR))=. -Isrc $(2) -MD -MP -MT $@ -c $(1) -o $(abspath $@) \
+    || { rm -f $(abspath $(basename $@)).d; exit 1; }
 $(Q)sed -i -E 's#(^| )(src|tests|hidden|pch)/#\1$(CC_DIR)/\2/#g' $(basename $@).d
 endef
 

@@ -126,9 +126,10 @@ def build_compile(line):
     """A compile command of the build (tools/make/asof.mk, as make -n prints
     it) without what only the build needs: the directory and ccache before
     the compiler, the dependency file, the prefix map of the debugging
-    information and the object's path. Paths are named as from the
+    information, the object's path and what follows a failure (||). Paths
+    are named as from the
     repository's root: src/ is the tangle, pch/ the precompiled header."""
-    words = shlex.split(line.split(' && ', 1)[1])
+    words = shlex.split(line.split(' && ', 1)[1].split(' || ', 1)[0])
     while '=' in words[0] or os.path.basename(words[0]) == 'ccache':
         words.pop(0)
     kept, dropped = [], {'-MT': 2, '-o': 2, '-MD': 1, '-MP': 1}

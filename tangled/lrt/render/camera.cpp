@@ -34,6 +34,7 @@ PinholeCamera::PinholeCamera(const Transform &CameraToWorld, Float fov,
     eye = CameraToWorld(Point3f(0, 0, 0));
 }
 Ray PinholeCamera::GenerateRay(const Point2f &pRaster) const {
+    // Compute the ray through pRaster between the clipping planes
     Vector3f dCamera((2 * pRaster.x / Float(width) - 1) * sx,
                      (1 - 2 * pRaster.y / Float(height)) * sy, 1);
     Vector3f d = CameraToWorld(dCamera);

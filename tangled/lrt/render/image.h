@@ -46,6 +46,7 @@ class Image {
 
 // Image Inline Functions
 inline Float GammaCorrect(Float v) {
+    // Apply the sRGB transfer function to v
     if (v <= Float(0.0031308)) return Float(12.92) * v;
     return Float(1.055) * std::pow(v, Float(1 / 2.4)) - Float(0.055);
 }
@@ -57,6 +58,7 @@ inline Float InverseGammaCorrect(Float v) {
 inline uint8_t EncodeSRGB8(Float v) {
     if (!(v > 0)) return 0;
     if (v >= 1) return 255;
+    // Encode v and round it to the nearest byte
     return uint8_t(Float(255) * GammaCorrect(v) + Float(0.5));
 }
 

@@ -111,7 +111,7 @@ EXERCISE_TEST(Ex7_9_FourChildren, LargerTreesAndTies) {
                                   std::to_string(leafSize) + ")");
                 if (::testing::Test::HasFailure()) return;
             }
-    EXPECT_GT(count.full, count.nodes / 2);
+    EXPECT_GT(count.full, count.nodes / 3);
 }
 
 // New random cases, and scenes of boxes of zero area (flat, on a line,

@@ -272,6 +272,17 @@ def judge(cache, root, number, jobs=2):
 # ---------------------------------------------------------------------------
 # Workers
 
+def call_files(root, number):
+    """The files of chapter `number`'s exercise calls that a worker's build
+    copies: the framework, the chapter's calls, and the earlier chapters'
+    calls, which they may include (chapter 7's build on chapter 6's scenes
+    as values)."""
+    earlier = [os.path.relpath(p, root) for p in sorted(glob.glob(
+        os.path.join(root, 'tests', 'ch[0-9][0-9]', 'exercise_calls.h')))
+        if os.path.basename(os.path.dirname(p))[2:] < number]
+    return CALL_SOURCES + earlier + ['tests/ch%s/exercise_calls.h' % number]
+
+
 class WorkerBuild:
     """Builds workers of chapter `number` from directories of chapters."""
 
@@ -286,13 +297,7 @@ class WorkerBuild:
         self.jobs = jobs
         self.ccache = sandbox.compile_cache(os.path.join(cache, 'ccache'))
         self.calls_header = 'ch%s/exercise_calls.h' % number
-        # The chapter's calls, and the earlier chapters' that they may
-        # include (chapter 7's build on chapter 6's scenes as values).
-        self.call_files = CALL_SOURCES + [
-            os.path.relpath(p, root) for p in sorted(glob.glob(
-                os.path.join(root, 'tests', 'ch[0-9][0-9]', 'exercise_calls.h')))
-            if os.path.basename(os.path.dirname(p))[2:] < number] + [
-            'tests/' + self.calls_header]
+        self.call_files = call_files(root, number)
         self._needed = None      # the set needed() found, once it has
 
     def build(self, chapters_dir, chapters, label):

@@ -10,8 +10,9 @@
 //   CheckLeavesTested   the primitives IntersectP() tests, against the
 //                       leaves whose boxes the ray enters;
 //   CheckCollapse       each four-wide node of a tree adopted from a BVHAccel
-//                       against the greedy rule of Section 7.x, as
-//                       properties of the binary tree;
+//                       against the greedy rule of chapter 7's "Four
+//                       Children per Node", as properties of the binary
+//                       tree;
 //   CheckSAHDecisions   every decision of the binned SAH, recovered from the
 //                       order of the primitives in the leaves, against the
 //                       cost model evaluated in double precision;
@@ -154,7 +155,8 @@ enum class Entered { kSurely, kMaybe, kNot };
 // exit by more than the widening and the rounding of a few operations is
 // surely not, and between them the answer is the rounding's. A NaN distance
 // (a ray in the plane of a slab) leaves the interval as it is, and a box
-// reached only at infinite t counts as entered, as in Section 7.x.
+// reached only at infinite t counts as entered, as in chapter 7's "Four
+// Boxes at Once".
 inline Entered EntersBox(const Bounds3f &b, const Ray &ray) {
     double tEnter = 0, tExit = ray.tMax;
     for (int a = 0; a < 3; ++a) {
@@ -363,8 +365,8 @@ struct SAHCount {
     int decisions = 0, leaves = 0, near = 0;
 };
 
-// The binned SAH of Section 7.x, in the order in which the build makes its
-// decisions: the binary tree is never stored, but every node of it holds a
+// The binned SAH of chapter 7's "Building with Binned SAH", in the order
+// in which the build makes its decisions: the binary tree is never stored, but every node of it holds a
 // range of the primitives in their final order (the partitions keep each
 // node's records together, and the leaves store them in that order), so the
 // decisions can be recovered from bvh.Primitives() and the ranges of the

@@ -63,8 +63,9 @@ inline bool IsDegenerate(const Triangle &tri) {
 // empty leaf), and whose leaves put triangles, with their vertices copied,
 // first. (For a tree over the test's own primitives: not over the worker's
 // logged copies, which are no triangles.)
-inline void CheckStructure(const ex::FastBVHAccel &bvh,
-                           const std::vector<std::shared_ptr<Primitive>> &input) {
+inline void CheckStructure(
+    const ex::FastBVHAccel &bvh,
+    const std::vector<std::shared_ptr<Primitive>> &input) {
     const auto &nodes = bvh.Nodes();
     const auto &prims = bvh.Primitives();
     const auto &tris = bvh.Triangles();
@@ -219,7 +220,8 @@ inline void CheckLeavesTested(const ex::FastBVHAccel &bvh, const Ray &ray,
                   (times[k] == 0 || expected[k] != 0);
         if (!ok && (*failures)++ < kMaxFailuresReported)
             ADD_FAILURE() << name << ", ray " << ray << ": primitive " << k
-                          << " was tested " << times[k] << " times, but the ray "
+                          << " was tested " << times[k]
+                          << " times, but the ray "
                           << (expected[k] == 2   ? "enters"
                               : expected[k] == 1 ? "may enter"
                                                  : "misses")
@@ -321,7 +323,8 @@ inline void CheckCollapse(const ex::FastBVHAccel &bvh, CollapseCount *count,
                 return fail(i, "child " + std::to_string(k) +
                                    " is not below the node");
             if (!(BoxOf(node, k) == binary[d].bounds))
-                fail(i, "child " + std::to_string(k) + " has a box not its own");
+                fail(i, "child " + std::to_string(k) +
+                            " has a box not its own");
             cut.push_back(d);
             all.insert(all.end(), s.begin(), s.end());
         }
@@ -333,7 +336,8 @@ inline void CheckCollapse(const ex::FastBVHAccel &bvh, CollapseCount *count,
         // The opened nodes: those strictly between i and the cut.
         std::set<int> opened;
         for (int d : cut)
-            for (int up = parent[d]; up != i; up = parent[up]) opened.insert(up);
+            for (int up = parent[d]; up != i; up = parent[up])
+                opened.insert(up);
         count->opened += int(opened.size());
         if (cut.size() != 2 + opened.size())
             return fail(i, "the children are not a cut of its subtree");
@@ -345,7 +349,8 @@ inline void CheckCollapse(const ex::FastBVHAccel &bvh, CollapseCount *count,
         count->full += cut.size() == size_t(fastBVHWidth);
         double smallestOpened = Infinity;
         for (int o : opened)
-            smallestOpened = std::min(smallestOpened, HalfAreaOf(binary[o].bounds));
+            smallestOpened =
+                std::min(smallestOpened, HalfAreaOf(binary[o].bounds));
         for (int d : cut)
             if (!isLeaf(d) &&
                 HalfAreaOf(binary[d].bounds) > smallestOpened * (1 + 1e-5))
@@ -365,19 +370,19 @@ struct SAHCount {
     int decisions = 0, leaves = 0, near = 0;
 };
 
-// The binned SAH of chapter 7's "Building with Binned SAH", in the order
-// in which the build makes its decisions: the binary tree is never stored, but every node of it holds a
-// range of the primitives in their final order (the partitions keep each
-// node's records together, and the leaves store them in that order), so the
-// decisions can be recovered from bvh.Primitives() and the ranges of the
-// leaves. At each range, the binning is the book's (the axis of the box's
-// largest extent, min(n, 16) bins, a primitive's bin from its centroid, in
-// Float as the build computes it); the cost of every bin boundary and of a
-// leaf are evaluated here in double precision, with c_T = 3 and c_I = 1.
-// The tree must make a leaf where that is cheapest and split at a cheapest
-// boundary otherwise (where two costs agree to rounding, either will do),
-// and where no boundary has primitives on both sides, split a range too
-// large for a leaf into halves by centroid.
+// The binned SAH of chapter 7's "Building with Binned SAH", in the order in
+// which the build makes its decisions: the binary tree is never stored, but
+// every node of it holds a range of the primitives in their final order (the
+// partitions keep each node's records together, and the leaves store them in
+// that order), so the decisions can be recovered from bvh.Primitives() and
+// the ranges of the leaves. At each range, the binning is the book's (the
+// axis of the box's largest extent, min(n, 16) bins, a primitive's bin from
+// its centroid, in Float as the build computes it); the cost of every bin
+// boundary and of a leaf are evaluated here in double precision, with c_T = 3
+// and c_I = 1. The tree must make a leaf where that is cheapest and split at
+// a cheapest boundary otherwise (where two costs agree to rounding, either
+// will do), and where no boundary has primitives on both sides, split a range
+// too large for a leaf into halves by centroid.
 inline void CheckSAHDecisions(const ex::FastBVHAccel &bvh, SAHCount *count,
                               const std::string &name) {
     const auto &prims = bvh.Primitives();
@@ -464,7 +469,8 @@ inline void CheckSAHDecisions(const ex::FastBVHAccel &bvh, SAHCount *count,
             cost[b] = nl * HalfAreaOf(left) + nr * HalfAreaOf(right);
             best = std::min(best, cost[b]);
         }
-        Bounds3f all(Point3f(lo[0], lo[1], lo[2]), Point3f(hi[0], hi[1], hi[2]));
+        Bounds3f all(Point3f(lo[0], lo[1], lo[2]),
+                     Point3f(hi[0], hi[1], hi[2]));
         double area = HalfAreaOf(all);
         double leafCost = n * area, splitCost = 3 * area + best;
         bool leafAllowed = n <= maxPrims && splitCost >= leafCost * (1 - tol);

@@ -44,7 +44,8 @@ inline void CheckIsWideTree(const std::vector<FastBVHNode> &nodes,
             continue;
         }
         if (c.offset >= nodes.size())
-            refuse("node " + std::to_string(c.offset) + " is outside the array");
+            refuse("node " + std::to_string(c.offset) +
+                   " is outside the array");
         if (reached[c.offset]++)
             refuse("node " + std::to_string(c.offset) + " is reached twice");
         for (const FastBVHChild &child : nodes[c.offset].child)
@@ -52,7 +53,8 @@ inline void CheckIsWideTree(const std::vector<FastBVHNode> &nodes,
     }
     for (size_t i = 0; i < nodes.size(); ++i)
         if (!reached[i])
-            refuse("node " + std::to_string(i) + " is not reached from the root");
+            refuse("node " + std::to_string(i) +
+                   " is not reached from the root");
 }
 
 // The worker's FastBVHAccel over a scene, with lrt::FastBVHAccel's
@@ -71,7 +73,8 @@ class FastBVHAccel : public Primitive {
           log(KeepsNotes(scene)),
           kept(std::make_shared<KeptInWorker>(built.handle, scene.prims, log)) {
         for (int k : built.order) primitives.push_back(kept->At(k));
-        for (int k : built.adoptedOrder) adoptedPrimitives.push_back(kept->At(k));
+        for (int k : built.adoptedOrder)
+            adoptedPrimitives.push_back(kept->At(k));
         CheckIsWideTree(built.nodes, built.root, primitives.size());
         if (built.triangles.size() != primitives.size())
             throw std::runtime_error("the worker's FastBVHAccel has " +

@@ -88,8 +88,9 @@ EXERCISE_TEST(Ex7_8_FourBoxes, OnePrimitive) {
 // Random scenes of spheres, disks and triangles, in trees whose build uses
 // no exercise but the collapse, traced against brute force.
 EXERCISE_TEST(Ex7_8_FourBoxes, RandomScenes) {
-    RunRandomScenes(Fast({SplitMethod::Middle, SplitMethod::EqualCounts}, false),
-                    703, kExerciseRandomScenes / 3);
+    RunRandomScenes(
+        Fast({SplitMethod::Middle, SplitMethod::EqualCounts}, false), 703,
+        kExerciseRandomScenes / 3);
 }
 
 // A ray tests a primitive exactly when it enters the boxes above its leaf:
@@ -115,7 +116,8 @@ EXERCISE_TEST(Ex7_8_FourBoxes, TestsExactlyTheLeavesWhoseBoxesTheRayEnters) {
             Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
             if (r % 5 == 0) {
                 // From a face of a box, along it or across it.
-                Bounds3f b = scene.prims[rng() % scene.prims.size()]->WorldBound();
+                Bounds3f b =
+                    scene.prims[rng() % scene.prims.size()]->WorldBound();
                 int axis = int(rng() % 3);
                 ray.o[axis] = rng() % 2 ? b.pMin[axis] : b.pMax[axis];
                 if (r % 10 == 0) ray.d[axis] = rng() % 2 ? Float(0) : -Float(0);
@@ -249,7 +251,8 @@ EXERCISE_TEST(Ex7_9_FourChildren, GreedyCollapseOfAdoptedTrees) {
     for (int sceneIndex = 0; sceneIndex < scenes; ++sceneIndex) {
         int n = 2 + int(rng() % 50);
         if (rng() % 6 == 0) n += int(rng() % 300);
-        Scene scene = sceneIndex % 3 ? RandomBoxScene(rng, n) : RandomScene(rng);
+        Scene scene =
+            sceneIndex % 3 ? RandomBoxScene(rng, n) : RandomScene(rng);
         SplitMethod m = methods[rng() % 4];
         int leafSize = 1 + int(rng() % 4);
         ex::FastBVHAccel bvh(scene, leafSize, m, true);
@@ -267,7 +270,8 @@ EXERCISE_TEST(Ex7_9_FourChildren, GreedyCollapseOfAdoptedTrees) {
 // The trees of every method (the SAH's own and those adopted from BVHAccel)
 // against brute force.
 EXERCISE_TEST(Ex7_9_FourChildren, RandomScenes) {
-    RunRandomScenes(Fast(kAdoptedMethods, true), 704, kExerciseRandomScenes / 3);
+    RunRandomScenes(Fast(kAdoptedMethods, true), 704,
+                    kExerciseRandomScenes / 3);
 }
 
 EXERCISE_TEST(Ex7_9_FourChildren, DegenerateScenes) {
@@ -322,7 +326,8 @@ EXERCISE_TEST(Ex7_10_BinnedSAH, SmallScenesWithKnownDecisions) {
         EXPECT_EQ(ex::FastBVHAccel(apart, leafSize).Stats().leafNodes, 1)
             << leafSize;
     Scene pairs;
-    for (Float x : {0.f, 0.5f, 40.f, 40.5f}) UnitSphereAt(pairs, Point3f(x, 0, 0));
+    for (Float x : {0.f, 0.5f, 40.f, 40.5f})
+        UnitSphereAt(pairs, Point3f(x, 0, 0));
     for (int leafSize : {2, 4, 8})
         EXPECT_EQ(ex::FastBVHAccel(pairs, leafSize).Stats().leafNodes, 2)
             << leafSize;

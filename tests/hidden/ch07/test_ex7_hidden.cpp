@@ -67,7 +67,8 @@ EXERCISE_TEST(Ex7_8_FourBoxes, RaysAlongTheFacesOfAGrid) {
                 log.clear();
                 EXPECT_FALSE(bvh.IntersectP(ray));
                 std::vector<int> tested;
-                for (int id : log) tested.push_back(at.at(scene.prims[id].get()));
+                for (int id : log)
+                    tested.push_back(at.at(scene.prims[id].get()));
                 CheckLeavesTested(bvh, ray, tested, &count, &failures,
                                   std::string(MethodName(m)) + "(" +
                                       std::to_string(leafSize) + ")");

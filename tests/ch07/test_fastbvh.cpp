@@ -1,201 +1,33 @@
-// Tests of chapter 7's FastBVHAccel: with every split method and several
-// leaf sizes, and adopting BVHAccel's trees, against a brute-force loop over
-// the primitives on thousands of random scenes of spheres, disks and
-// triangles; structure invariants of every tree built; degenerate inputs;
-// its triangle test against Triangle::Intersect(), bit for bit; its hits
-// against BVHAccel's; its box test's mask, rays with NaN and infinite
-// components in every octant; and its large arrays. The scenes, oracles and
-// checks are chapter 6's (bvh_scenes.h), which the tests of BVHAccel use
-// too. BVHAccel's SAH and HLBVH builders and its traversal hold chapter 6's
-// exercises, and are used here as the book writes them.
+// Tests of chapter 7's FastBVHAccel that reach no graded exercise's code,
+// so that they pass in the student edition too: accelerators over no
+// primitives, the checks of the constructor's arguments, the box test's
+// mask (EnteredChildren(), against its definition, NaNs included), and the
+// large arrays.
+//
+// The graded exercises (the box test, the collapse into four-wide nodes and
+// the sweep of the binned SAH) are in every tree of more than one leaf and
+// every ray traced; their tests are test_fastbvh_exercises.cpp, through the
+// exercise calls. The tests of the rest of FastBVHAccel as the book writes
+// it, which trace rays through such trees (its triangle test against
+// Triangle::Intersect(), its hits against BVHAccel's and brute force's on
+// random scenes and on the bunny), are chapter 8's: in chapter 8's student
+// edition, chapter 7's code is the book's.
 
-#include "ch06/bvh_checks.h"
 #include "ch06/bvh_scenes.h"
 #include "lrt/accelerators/fastbvh.h"
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
-#include <functional>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <random>
-#include <set>
-#include <string>
+#include <stdexcept>
 #include <vector>
 
 using namespace lrt;
 using namespace lrt_test;
-
-namespace {
-
-// The split methods whose records FastBVHAccel fills itself (the SAH) or by
-// adopting BVHAccel's tree (Middle and EqualCounts).
-const std::vector<SplitMethod> kPlainMethods = {
-    SplitMethod::SAH, SplitMethod::Middle, SplitMethod::EqualCounts};
-
-
-// A triangle whose geometric normal, computed as Triangle::Intersect()
-// computes it, is zero: no ray can hit it.
-bool IsDegenerate(const Triangle &tri) {
-    Point3f p0, p1, p2;
-    tri.GetVertices(&p0, &p1, &p2);
-    return Cross(p0 - p2, p1 - p2).LengthSquared() == 0;
-}
-
-// BVHAccel's structure is checked by chapter 6's CheckStructure(), which
-// the one for FastBVHAccel below overloads.
-using lrt_test::CheckStructure;
-
-// A child's box in a FastBVHNode: bounds[axis][min or max][child].
-Bounds3f BoxOf(const FastBVHNode &n, int c) {
-    Bounds3f r;
-    r.pMin = Point3f(n.bounds[0][0][c], n.bounds[1][0][c], n.bounds[2][0][c]);
-    r.pMax = Point3f(n.bounds[0][1][c], n.bounds[1][1][c], n.bounds[2][1][c]);
-    return r;
-}
-
-// The structure of a FastBVHAccel, as CheckStructure() checks a
-// BVHAccel's (bvh_scenes.h): its boxes are stored in the parents, whose
-// nodes have two to four children (unused slots hold an empty box and an
-// empty leaf), and whose leaves put triangles, with their vertices copied,
-// first.
-void CheckStructure(const FastBVHAccel &bvh,
-                    const std::vector<std::shared_ptr<Primitive>> &input) {
-    const auto &nodes = bvh.Nodes();
-    const auto &prims = bvh.Primitives();
-    const auto &tris = bvh.Triangles();
-    std::multiset<const Primitive *> got;
-    for (const auto &p : prims) got.insert(p.get());
-    ASSERT_EQ(got, ValidPrimitives(input));
-    ASSERT_EQ(tris.size(), prims.size());
-    BVHStats s = bvh.Stats();
-    if (prims.empty()) {
-        EXPECT_TRUE(nodes.empty());
-        EXPECT_EQ(s.TotalNodes(), 0);
-        EXPECT_TRUE(bvh.WorldBound().IsEmpty());
-        return;
-    }
-    std::vector<int> visited(nodes.size(), 0), covered(prims.size(), 0);
-    int maxDepth = 0, leaves = 0;
-    int64_t children = 0;
-    std::function<Bounds3f(FastBVHChild, int)> visit =
-        [&](FastBVHChild c, int depth) -> Bounds3f {
-        maxDepth = std::max(maxDepth, depth);
-        Bounds3f b;
-        if (c.IsLeaf()) {
-            ++leaves;
-            EXPECT_LE(c.NPrimitives(), bvh.MaxPrimsInNode());
-            EXPECT_LE(size_t(c.offset) + c.NPrimitives(), prims.size());
-            for (int i = 0; i < c.NPrimitives() &&
-                            size_t(c.offset) + i < prims.size();
-                 ++i) {
-                size_t k = c.offset + i;
-                covered[k]++;
-                b = Union(b, prims[k]->WorldBound());
-                const Triangle *tri = AsTriangle(prims[k].get());
-                if (tri && IsDegenerate(*tri)) tri = nullptr;
-                EXPECT_EQ(tri != nullptr, i < c.nTriangles) << k;
-                if (tri) {
-                    Point3f q[3];
-                    tri->GetVertices(&q[0], &q[1], &q[2]);
-                    for (int a = 0; a < 3; ++a) {
-                        for (int j = 0; j < 3; ++j)
-                            EXPECT_EQ(tris[k].c[a][j], q[j][a]);
-                        EXPECT_EQ(tris[k].c[a][3], 0);
-                    }
-                }
-            }
-            return b;
-        }
-        if (c.offset >= nodes.size()) {
-            ADD_FAILURE() << "bad node index " << c.offset;
-            return b;
-        }
-        visited[c.offset]++;
-        const FastBVHNode &n = nodes[c.offset];
-        int used = 0;
-        for (int k = 0; k < fastBVHWidth; ++k) {
-            if (n.child[k].IsEmpty()) {
-                // An unused slot: no box a ray could enter, nothing to visit.
-                EXPECT_TRUE(n.child[k].IsLeaf());
-                Bounds3f bk = BoxOf(n, k);
-                for (int a = 0; a < 3; ++a) {
-                    EXPECT_EQ(bk.pMin[a], Infinity) << "node " << c.offset;
-                    EXPECT_EQ(bk.pMax[a], -Infinity) << "node " << c.offset;
-                }
-                continue;
-            }
-            // Used slots come first.
-            EXPECT_EQ(k, used) << "node " << c.offset;
-            ++used;
-            Bounds3f bk = visit(n.child[k], depth + 1);
-            EXPECT_EQ(BoxOf(n, k), bk) << "node " << c.offset;
-            b = Union(b, bk);
-        }
-        EXPECT_GE(used, 2) << "node " << c.offset;
-        children += used;
-        return b;
-    };
-    EXPECT_EQ(visit(bvh.Root(), 0), bvh.WorldBound());
-    for (size_t i = 0; i < visited.size(); ++i)
-        ASSERT_EQ(visited[i], 1) << "node " << i;
-    for (size_t i = 0; i < covered.size(); ++i)
-        ASSERT_EQ(covered[i], 1) << "primitive " << i;
-    EXPECT_LE(maxDepth, maxBVHDepth);
-    EXPECT_EQ(s.interiorNodes, int64_t(nodes.size()));
-    EXPECT_EQ(s.leafNodes, leaves);
-    // Every node but the root is the child of exactly one interior node.
-    EXPECT_EQ(children + 1, s.TotalNodes());
-    EXPECT_EQ(s.primitives, int64_t(prims.size()));
-    EXPECT_EQ(s.maxDepth, maxDepth);
-}
-
-void AddAdopted(std::vector<Accel> *v, const BVHAccel &bvh,
-                const Prims &prims, SplitMethod m, int leafSize) {
-    auto adopted = std::make_unique<FastBVHAccel>(bvh);
-    CheckStructure(*adopted, prims);
-    v->push_back({Label("FastBVHAccel from BVHAccel", m, leafSize),
-                  std::move(adopted)});
-}
-
-// FastBVHAccel built with the given methods, and BVHAccel's trees of the
-// same methods adopted by a FastBVHAccel.
-AccelSet Fast(std::vector<SplitMethod> methods) {
-    return [methods](const Scene &scene, int leafSize) {
-        const Prims &prims = scene.prims;
-        std::vector<Accel> v;
-        for (SplitMethod m : methods) {
-            BVHAccel bvh(prims, leafSize, m);
-            CheckStructure(bvh, prims);
-            AddAdopted(&v, bvh, prims, m, leafSize);
-            auto fast = std::make_unique<FastBVHAccel>(prims, leafSize, m);
-            CheckStructure(*fast, prims);
-            v.push_back({Label("FastBVHAccel", m, leafSize), std::move(fast)});
-        }
-        return v;
-    };
-}
-
-const std::vector<SplitMethod> kAllMethods(std::begin(kMethods),
-                                           std::end(kMethods));
-
-}  // namespace
-
-TEST(FastBVHRandomScenes, SAH) {
-    RunRandomScenes(Fast({SplitMethod::SAH}), 601, kRandomScenes);
-}
-TEST(FastBVHRandomScenes, HLBVH) {
-    RunRandomScenes(Fast({SplitMethod::HLBVH}), 602, kRandomScenes);
-}
-TEST(FastBVHRandomScenes, Middle) {
-    RunRandomScenes(Fast({SplitMethod::Middle}), 603, kRandomScenes);
-}
-TEST(FastBVHRandomScenes, EqualCounts) {
-    RunRandomScenes(Fast({SplitMethod::EqualCounts}), 604, kRandomScenes);
-}
 
 TEST(FastBVHDegenerate, NoPrimitives) {
     std::vector<std::shared_ptr<Primitive>> none;
@@ -203,9 +35,10 @@ TEST(FastBVHDegenerate, NoPrimitives) {
         BVHAccel bvh(none, 4, m);
         FastBVHAccel fast(none, 4, m);
         FastBVHAccel adopted(bvh);
-        CheckStructure(fast, none);
-        CheckStructure(adopted, none);
         for (const FastBVHAccel *p : {&fast, &adopted}) {
+            EXPECT_TRUE(p->Nodes().empty());
+            EXPECT_TRUE(p->Primitives().empty());
+            EXPECT_EQ(p->Stats().TotalNodes(), 0);
             Ray ray(Point3f(0, 0, 0), Vector3f(0, 0, 1));
             SurfaceInteraction si;
             EXPECT_FALSE(p->Intersect(ray, &si));
@@ -215,8 +48,6 @@ TEST(FastBVHDegenerate, NoPrimitives) {
         }
     }
 }
-
-TEST(FastBVHDegenerate, OnePrimitive) { CheckOnePrimitive(Fast(kAllMethods)); }
 
 TEST(FastBVHDegenerate, ArgumentChecks) {
     Scene scene;
@@ -229,209 +60,6 @@ TEST(FastBVHDegenerate, ArgumentChecks) {
     // Leaf sizes are clamped to [1, 255].
     EXPECT_EQ(FastBVHAccel(scene.prims, 0).MaxPrimsInNode(), 1);
     EXPECT_EQ(FastBVHAccel(scene.prims, 1000).MaxPrimsInNode(), 255);
-}
-
-TEST(FastBVHDegenerate, Scenes) { CheckDegenerateScenes(Fast(kAllMethods)); }
-
-// FastBVHAccel reports the SAH cost of its tree as BVHAccel does, with
-// c_T = c_I = 1: for a two-level tree, the definition of the tree cost.
-TEST(FastBVHAccel, StatsSAHCost) {
-    Scene scene;
-    UnitSphereAt(scene, Point3f(0, 0, 0));
-    UnitSphereAt(scene, Point3f(4, 0, 0));
-    FastBVHAccel fast(scene.prims, 1);
-    // Root box 6 x 2 x 2 (area 56), leaves 2 x 2 x 2 (area 24).
-    EXPECT_NEAR(fast.Stats().sahCost, 1 + 2 * 24.0 / 56.0, 1e-6);
-}
-
-// The fast BVH over triangles gives bit for bit the hits of BVHAccel, on a
-// closed mesh (a subdivided octahedron) and rays from all directions.
-TEST(FastBVHAccel, SameHitsAsBVHAccelOnAClosedMesh) {
-    Scene scene = ClosedMeshScene(5);
-    std::mt19937_64 rng(615);
-    for (SplitMethod m : kMethods)
-        ExpectSameHitsOnAClosedMesh(BVHAccel(scene.prims, 4, m),
-                                    FastBVHAccel(scene.prims, 8, m), rng,
-                                    20000);
-}
-// Every member of two interactions, compared exactly.
-bool SameInteraction(const SurfaceInteraction &a, const SurfaceInteraction &b) {
-    return a.p == b.p && a.time == b.time && a.pError == b.pError &&
-           a.wo == b.wo && a.n == b.n && a.uv == b.uv && a.dpdu == b.dpdu &&
-           a.dpdv == b.dpdv && a.dndu == b.dndu && a.dndv == b.dndv &&
-           a.shape == b.shape && a.shading.n == b.shading.n &&
-           a.shading.dpdu == b.shading.dpdu &&
-           a.shading.dpdv == b.shading.dpdv &&
-           a.shading.dndu == b.shading.dndu &&
-           a.shading.dndv == b.shading.dndv && a.faceIndex == b.faceIndex &&
-           a.flipNormal == b.flipNormal;
-}
-
-// FastBVHAccel's triangle test is Triangle's, reorganized: on a single
-// triangle it must agree with Triangle::Intersect() bit for bit, including
-// rays aimed exactly at edges and vertices (which exercise the double
-// precision fallback) and degenerate triangles. Its interaction must be
-// Triangle::Intersect()'s, member for member, both for meshes of positions
-// only (completed from the FastTriangleInfo record, which must then carry
-// the right face index and orientation: reversed, mirrored by the
-// transformation, or both) and for meshes with normals, tangents or (u,v)
-// (completed by the Triangle). The split methods without exercises cycle,
-// since the record is filled by the SAH builder and by the copy of
-// BVHAccel's trees.
-TEST(FastBVHAccel, TriangleTestMatchesTriangleIntersect) {
-    std::mt19937_64 rng(614);
-    Transform id, mirror = Scale(-1, 1, 1), mirrorInverse = Inverse(mirror);
-    ASSERT_TRUE(mirror.SwapsHandedness());
-    int tri[3] = {0, 1, 2};
-    int disagreements = 0, hits = 0, plainHits = 0, attributeHits = 0,
-        flippedHits = 0;
-    constexpr int kTriangles = 4000, kRays = 40;
-    for (int i = 0; i < kTriangles; ++i) {
-        Point3f c = RandomPoint(rng, Point3f(0, 0, 0), 10);
-        double size = std::pow(10.0, U(rng, -4, 1));
-        Point3f p[3];
-        for (Point3f &q : p) q = RandomPoint(rng, c, size);
-        if (i % 10 == 0) p[2] = p[0] + (p[1] - p[0]) * Float(U(rng, 0, 1));
-        if (i % 17 == 0) p[1] = p[0];
-        // Orientation, face index and vertex attributes vary with i.
-        bool reverse = i % 3 == 1;
-        const Transform *toWorld = i % 4 == 2 ? &mirror : &id;
-        const Transform *toObject = i % 4 == 2 ? &mirrorInverse : &id;
-        int face = 1000 + i;
-        const int *faceIndices = i % 2 == 1 ? &face : nullptr;
-        Point2f uv[3] = {Point2f(0.25f, 0.5f), Point2f(0.75f, 0.125f),
-                         Point2f(0.5f, 1)};
-        Normal3f n[3] = {Normal3f(0, 0, 1), Normal3f(0, 1, 1),
-                         Normal3f(1, 0, 1)};
-        Vector3f ss[3] = {Vector3f(1, 0, 0), Vector3f(1, 1, 0),
-                          Vector3f(0, 1, 0)};
-        int attributes = i % 8;  // 0 to 4: none; 5: uv; 6: n; 7: s
-        auto shapes = CreateTriangleMesh(
-            toWorld, toObject, reverse, 1, tri, 3, p,
-            attributes == 7 ? ss : nullptr, attributes == 6 ? n : nullptr,
-            attributes == 5 ? uv : nullptr, faceIndices);
-        const auto &triangle = static_cast<const Triangle &>(*shapes[0]);
-        Point3f w[3];
-        triangle.GetVertices(&w[0], &w[1], &w[2]);
-        auto prim = std::make_shared<GeometricPrimitive>(shapes[0]);
-        std::vector<std::shared_ptr<Primitive>> one = {prim};
-        SplitMethod method = kPlainMethods[(i / 3) % kPlainMethods.size()];
-        FastBVHAccel fast(one, 8, method);
-        for (int r = 0; r < kRays; ++r) {
-            // A target on the triangle, on an edge, or at a vertex.
-            Float b0 = Float(U(rng, 0, 1)), b1 = Float(U(rng, 0, 1 - b0));
-            if (r % 4 == 1) b1 = 1 - b0;
-            if (r % 4 == 2) b0 = 1, b1 = 0;
-            Point3f target = w[0] * b0 + w[1] * b1 + w[2] * (1 - b0 - b1);
-            Point3f o = RandomPoint(rng, Point3f((*toWorld)(c)),
-                                    20 * size + 1);
-            Ray ray(o, target - o);
-            if (r % 5 == 0) ray.d = Normalize(ray.d);
-            if (r % 7 == 0) ray.tMax = Float(U(rng, 0.5, 1.5));
-            ray.time = Float(r) / kRays;
-            Float tShape;
-            SurfaceInteraction siShape, siFast;
-            bool shapeHit = shapes[0]->Intersect(ray, &tShape, &siShape);
-            Ray rf = ray;
-            bool fastHit = fast.Intersect(rf, &siFast);
-            bool ok = shapeHit == fastHit &&
-                      fast.IntersectP(ray) == shapes[0]->IntersectP(ray);
-            if (ok && shapeHit)
-                ok = rf.tMax == tShape && SameInteraction(siFast, siShape) &&
-                     siFast.primitive == prim.get();
-            hits += shapeHit;
-            plainHits += shapeHit && attributes < 5;
-            attributeHits += shapeHit && attributes >= 5;
-            flippedHits += shapeHit && siShape.flipNormal;
-            if (!ok && disagreements++ < kMaxFailuresReported)
-                ADD_FAILURE() << "triangle " << i << " ray " << ray
-                              << ": shape " << shapeHit << " t " << tShape
-                              << ", fast " << fastHit << " t " << rf.tMax;
-        }
-    }
-    EXPECT_EQ(disagreements, 0);
-    EXPECT_GT(hits, kTriangles * kRays / 4);
-    // Each kind of mesh and both orientations were hit often.
-    EXPECT_GT(plainHits, hits / 2);
-    EXPECT_GT(attributeHits, hits / 5);
-    EXPECT_GT(flippedHits, hits / 4);
-}
-
-// Degenerate triangles (collinear or coincident vertices, or so small that
-// the normal underflows) are kept with the other primitives rather than in
-// the fast path, whose test no longer checks for them; rays aimed at them
-// and at their neighbors get brute force's closest hit, and IntersectP()
-// agrees.
-TEST(FastBVHAccel, DegenerateTrianglesStayOutOfTheFastPath) {
-    std::mt19937_64 rng(615);
-    Scene scene;
-    std::vector<Point3f> p;
-    std::vector<int> indices;
-    int degenerate = 0;
-    for (int i = 0; i < 300; ++i) {
-        Point3f c = RandomPoint(rng, Point3f(0, 0, 0), 5);
-        Point3f q[3] = {RandomPoint(rng, c, 0.5), RandomPoint(rng, c, 0.5),
-                        RandomPoint(rng, c, 0.5)};
-        if (i % 3 == 1) q[2] = q[0] + (q[1] - q[0]) * Float(0.25);
-        if (i % 6 == 2) q[1] = q[0];
-        if (i % 12 == 5) {
-            q[1] = q[0] + Vector3f(1e-30f, 0, 0);
-            q[2] = q[0] + Vector3f(0, 1e-30f, 0);
-        }
-        for (const Point3f &v : q) {
-            indices.push_back(int(p.size()));
-            p.push_back(v);
-        }
-    }
-    scene.AddTriangles(p, indices);
-    for (const auto &prim : scene.prims)
-        degenerate += IsDegenerate(*AsTriangle(prim.get()));
-    ASSERT_GT(degenerate, 60);   // 75 by construction, some collinear ones
-    ASSERT_LT(degenerate, 200);  // most collinear ones are not, after rounding
-    for (SplitMethod method : kPlainMethods) {
-        SCOPED_TRACE(MethodName(method));
-        FastBVHAccel fast(scene.prims, 4, method);
-        CheckStructure(fast, scene.prims);
-        int fastTriangles = 0;
-        std::function<void(FastBVHChild)> count = [&](FastBVHChild c) {
-            if (c.IsLeaf()) {
-                fastTriangles += c.nTriangles;
-                return;
-            }
-            for (const FastBVHChild &child : fast.Nodes()[c.offset].child)
-                if (!child.IsEmpty()) count(child);
-        };
-        count(fast.Root());
-        EXPECT_EQ(fastTriangles, int(scene.prims.size()) - degenerate);
-        int disagreements = 0;
-        for (size_t k = 0; k < scene.prims.size(); ++k) {
-            Point3f q[3];
-            AsTriangle(scene.prims[k].get())->GetVertices(&q[0], &q[1], &q[2]);
-            Point3f target = (q[0] + q[1] + q[2]) / 3;
-            Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 20);
-            Ray ray(o, target - o);
-            Float tBrute = Infinity;
-            const Primitive *closest = nullptr;
-            for (const auto &prim : scene.prims) {
-                Ray r = ray;
-                SurfaceInteraction si;
-                if (prim->Intersect(r, &si) && r.tMax < tBrute) {
-                    tBrute = r.tMax;
-                    closest = prim.get();
-                }
-            }
-            Ray r = ray;
-            SurfaceInteraction si;
-            bool hit = fast.Intersect(r, &si);
-            bool ok = hit == (closest != nullptr) &&
-                      fast.IntersectP(ray) == hit &&
-                      (!hit || (r.tMax == tBrute && si.primitive == closest));
-            if (!ok && disagreements++ < kMaxFailuresReported)
-                ADD_FAILURE() << "ray " << k << ": fast " << hit << " t "
-                              << r.tMax << ", brute force t " << tBrute;
-        }
-        EXPECT_EQ(disagreements, 0);
-    }
 }
 
 // EnteredChildren() builds the traversal's mask of entered children, with
@@ -481,107 +109,6 @@ void CheckEnteredChildren() {
 TEST(FastBVHAccel, EnteredChildrenMatchesItsDefinition) {
     CheckEnteredChildren<float>();
     CheckEnteredChildren<double>();
-}
-
-// FastBVHAccel's nodes have four slots, and the unused ones hold an empty
-// box. A ray that is NaN on every axis passes every box test (a NaN never
-// rejects, Section 5.4), also the empty boxes, so for such rays the
-// traversal visits the unused slots too; they must be empty leaves, not
-// references to node 0, or the traversal would never end. Rays NaN on some
-// axes and rays with infinite components must get the same answer from
-// every tree. (The trees are FastBVHAccel's own SAH tree and the Middle and
-// EqualCounts trees it adopts, whose builders hold no exercise, so that
-// this test runs in the student edition too.)
-TEST(FastBVHAccel, RaysWithNaNAndInfinityEndAndAgreeAcrossTrees) {
-    std::mt19937_64 rng(616);
-    Scene scene;
-    for (int i = 0; i < 300; ++i) {
-        Point3f a = RandomPoint(rng, Point3f(0, 0, 0), 2);
-        scene.AddTriangles({a, a + RandomDirection(rng) * Float(0.3),
-                            a + RandomDirection(rng) * Float(0.3)},
-                           {0, 1, 2});
-    }
-    const Float nan = std::numeric_limits<Float>::quiet_NaN();
-    const Float inf = Infinity;
-    std::vector<Ray> rays;
-    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(nan, nan, nan)));
-    rays.push_back(Ray(Point3f(0, 0, 0), Vector3f(nan, nan, nan)));
-    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(0, 0, 1)));
-    rays.push_back(Ray(Point3f(-5, 0, 0), Vector3f(1, nan, 0)));
-    rays.push_back(Ray(Point3f(-5, 0.1f, 0.2f), Vector3f(inf, 0, 0)));
-    rays.push_back(Ray(Point3f(-inf, 0, 0), Vector3f(1, 0, 0)));
-    for (int i = 0; i < 200; ++i) {
-        Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 4);
-        Vector3f d = RandomDirection(rng);
-        int axis = i % 3;
-        if (i % 2) d[axis] = nan;
-        else o[axis] = nan;
-        rays.push_back(Ray(o, d));
-    }
-    FastBVHAccel sah(scene.prims, 8, SplitMethod::SAH);
-    FastBVHAccel middle(scene.prims, 4, SplitMethod::Middle);
-    FastBVHAccel equal(scene.prims, 2, SplitMethod::EqualCounts);
-    for (const Ray &ray : rays) {
-        Ray r[3] = {ray, ray, ray};
-        SurfaceInteraction si[3];
-        bool h[3] = {sah.Intersect(r[0], &si[0]),
-                     middle.Intersect(r[1], &si[1]),
-                     equal.Intersect(r[2], &si[2])};
-        bool p[3] = {sah.IntersectP(ray), middle.IntersectP(ray),
-                     equal.IntersectP(ray)};
-        for (int k = 1; k < 3; ++k) {
-            EXPECT_EQ(h[0], h[k]) << ray;
-            EXPECT_EQ(p[0], p[k]) << ray;
-            if (h[0] && h[k]) {
-                EXPECT_TRUE(r[0].tMax == r[k].tMax ||
-                            (std::isnan(r[0].tMax) && std::isnan(r[k].tMax)))
-                    << ray;
-            }
-        }
-    }
-}
-
-// FastBVHAccel traverses with one instance of its loop per octant of the
-// ray's direction, each with the near and far planes of its octant built in
-// (chapter 7, "Fast Traversal"). Every octant, with zero components of either sign (whose
-// sign the reciprocal decides), must find what brute force finds.
-TEST(FastBVHAccel, EveryOctantWithSignedZerosAgreesWithBruteForce) {
-    std::mt19937_64 rng(6177);
-    const Float magnitudes[] = {0, Float(0.25), 1};
-    int hitsPerOctant[8] = {};
-    for (int sceneIndex = 0; sceneIndex < 20; ++sceneIndex) {
-        Scene scene = RandomScene(rng);
-        FastBVHAccel sah(scene.prims, 8, SplitMethod::SAH);
-        FastBVHAccel middle(scene.prims, 4, SplitMethod::Middle);
-        for (int octant = 0; octant < 8; ++octant)
-            for (Float mx : magnitudes)
-                for (Float my : magnitudes)
-                    for (Float mz : magnitudes) {
-                        if (mx == 0 && my == 0 && mz == 0) continue;
-                        // Negative zero where the octant says negative.
-                        Vector3f d(octant & 1 ? -mx : mx,
-                                   octant & 2 ? -my : my,
-                                   octant & 4 ? -mz : mz);
-                        Ray ray = RandomRay(rng, scene.bounds);
-                        // Aim the ray's line near the scene's centre.
-                        Point3f c = scene.bounds.pMin * Float(0.5) +
-                                    scene.bounds.pMax * Float(0.5);
-                        double r = scene.bounds.Diagonal().Length() / 2;
-                        ray.o = RandomPoint(rng, c, 0.4 * r) -
-                                Normalize(d) * Float(U(rng, 0, 3 * r));
-                        ray.d = d;
-                        Oracle o = BruteForce(scene.prims, ray);
-                        if (!o.hits.empty()) ++hitsPerOctant[octant];
-                        for (const FastBVHAccel *a : {&sah, &middle}) {
-                            std::string e = Compare(*a, ray, o);
-                            EXPECT_TRUE(e.empty())
-                                << "octant " << octant << ", ray " << ray
-                                << ": " << e;
-                        }
-                    }
-    }
-    for (int octant = 0; octant < 8; ++octant)
-        EXPECT_GT(hitsPerOctant[octant], 50) << "octant " << octant;
 }
 
 // FastBVHAccel keeps its nodes, triangles and references in LargeArrays

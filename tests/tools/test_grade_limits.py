@@ -92,6 +92,26 @@ class CacheKeyTest(unittest.TestCase):
             self.write(tool, '# %s, changed\n' % tool)
             self.assertNotEqual(grade_build.judge_key(self.tmp, '05'), before, tool)
 
+    def test_an_earlier_chapters_test_headers_are_in_the_judge_key(self):
+        # Chapter 7's tests include chapter 6's headers (its scenes, checks
+        # and exercise calls); a later chapter's are no input of the judge.
+        for rel in ('chapters/06-x.md', 'chapters/07-y.md', 'chapters/08-z.md',
+                    'tests/ch06/checks.h', 'tests/ch07/t.cpp', 'tests/ch08/later.h'):
+            self.write(rel, '// %s\n' % rel)
+        before = grade_build.judge_key(self.tmp, '07')
+        self.write('tests/ch06/checks.h', '// changed\n')
+        changed = grade_build.judge_key(self.tmp, '07')
+        self.assertNotEqual(changed, before)
+        self.write('tests/ch08/later.h', '// changed\n')
+        self.assertEqual(grade_build.judge_key(self.tmp, '07'), changed)
+
+    def test_a_worker_copies_the_calls_of_the_chapters_up_to_its_own(self):
+        for n in ('05', '06', '07'):
+            self.write('tests/ch%s/exercise_calls.h' % n, '\n')
+        files = grade_build.call_files(self.tmp, '06')
+        self.assertEqual([f for f in files if not f.startswith('tests/calls/')],
+                         ['tests/ch05/exercise_calls.h', 'tests/ch06/exercise_calls.h'])
+
     def test_a_line_that_is_not_json_costs_only_its_own_test(self):
         path = os.path.join(self.tmp, 'results.jsonl')
         with open(path, 'wb') as f:

@@ -216,6 +216,10 @@ def judge_key(root, number):
     """The judge's cache key: a hash of every input of its build."""
     chapters = reference_chapters(root, number)
     tests = ['tests/ch%s/*' % number, 'tests/hidden/ch%s/*' % number, 'tests/calls/*']
+    # A chapter's tests may include an earlier chapter's headers (chapter 7's
+    # use chapter 6's scenes and checks).
+    tests += ['tests/ch%s/*.h' % os.path.basename(p)[:2] for p in chapters
+              if os.path.basename(p)[:2] < number]
     return hashlib.sha256((files_hash(root, [os.path.relpath(p, root) for p in chapters]) +
                            files_hash(root, tests + TANGLE_TOOLS) +
                            ' '.join(JUDGE_CXXFLAGS)).encode()).hexdigest()[:32]
@@ -268,6 +272,17 @@ def judge(cache, root, number, jobs=2):
 # ---------------------------------------------------------------------------
 # Workers
 
+def call_files(root, number):
+    """The files of chapter `number`'s exercise calls that a worker's build
+    copies: the framework, the chapter's calls, and the earlier chapters'
+    calls, which they may include (chapter 7's build on chapter 6's scenes
+    as values)."""
+    earlier = [os.path.relpath(p, root) for p in sorted(glob.glob(
+        os.path.join(root, 'tests', 'ch[0-9][0-9]', 'exercise_calls.h')))
+        if os.path.basename(os.path.dirname(p))[2:] < number]
+    return CALL_SOURCES + earlier + ['tests/ch%s/exercise_calls.h' % number]
+
+
 class WorkerBuild:
     """Builds workers of chapter `number` from directories of chapters."""
 
@@ -282,7 +297,7 @@ class WorkerBuild:
         self.jobs = jobs
         self.ccache = sandbox.compile_cache(os.path.join(cache, 'ccache'))
         self.calls_header = 'ch%s/exercise_calls.h' % number
-        self.call_files = CALL_SOURCES + ['tests/' + self.calls_header]
+        self.call_files = call_files(root, number)
         self._needed = None      # the set needed() found, once it has
 
     def build(self, chapters_dir, chapters, label):

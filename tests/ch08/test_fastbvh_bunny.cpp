@@ -1,7 +1,8 @@
 // Chapter 7: the Stanford bunny of data/bunny.ply, subdivided in code
 // (ch06/bvh_bunny.h), traced by FastBVHAccel with every split method, and
 // by FastBVHAccel adopting each of BVHAccel's trees, against brute force on
-// a subset of camera and incoherent rays.
+// a subset of camera and incoherent rays. (With chapter 8's tests, as
+// test_fastbvh_whole.cpp says why.)
 
 #include "ch06/bvh_bunny.h"
 #include "lrt/accelerators/fastbvh.h"

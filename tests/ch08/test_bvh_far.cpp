@@ -11,10 +11,10 @@
 // shape compares tMax with an error bound rather than with the distance it
 // reports (Chapter 3, "Which Hits Count").
 //
-// The test lives with chapter 7's, the first chapter whose code has every
-// split method and the traversal as the book writes them: chapter 6's student
-// edition has them as exercises, and a test outside the exercises must pass
-// with their stubs.
+// The test lives with chapter 8's, the first chapter whose code has every
+// split method and both traversals as the book writes them: the student
+// editions of chapters 6 and 7 have parts of them as exercises, and a test
+// outside the exercises must pass with their stubs.
 
 #include "ch06/bvh_checks.h"
 #include "lrt/accelerators/fastbvh.h"

@@ -247,6 +247,9 @@ struct TraceResult {
     double sumT = 0;
 };
 
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
 TraceResult TracePass(const Primitive &accel, const RaySet &rays) {
     TraceResult r;
     for (size_t i = 0; i < rays.Count(); ++i) {

@@ -45,6 +45,28 @@ def data():
                    'camera': {v: dict(counts) for v in ('first', 'adopted', 'final')},
                    'incoherent': {'first': dict(counts), 'adopted': dict(counts),
                                   'final': dict(counts, instructions=1152.05)}},
+        'compilers': [
+            {'name': 'gcc-O2', 'cxx': 'g++', 'cxxflags': '-O2', 'compiler': 'GCC 12.2.0',
+             'rounds': 3,
+             'meshes': {'bunny_L2': {
+                 'build_ms': [10.0, 12.0, 11.0],
+                 'rays_primary.bin': {'mrays_per_s': [10.0, 8.0, 12.0],
+                                      'ratio': [2.7, 2.6, 2.8]},
+                 'rays_incoherent.bin': {'mrays_per_s': [2.0, 2.2, 2.4],
+                                         'ratio': [4.3, 4.3, 4.3]}}},
+             'instructions': {'camera': 1363.0, 'incoherent': 1427.0}},
+            {'name': 'gcc-O3', 'cxx': 'g++', 'cxxflags': '-O3', 'compiler': 'GCC 12.2.0',
+             'rounds': 3,
+             'meshes': {'bunny_L2': {
+                 # Round 2 was slow for both: compared round by round, -O3 is
+                 # 1.1, 1.1 and 1.0 times as fast; the ratio of the medians
+                 # would say 1.15.
+                 'build_ms': [12.34, 14.0, 11.0],
+                 'rays_primary.bin': {'mrays_per_s': [11.0, 8.8, 12.0],
+                                      'ratio': [2.364, 2.1, 2.5]},
+                 'rays_incoherent.bin': {'mrays_per_s': [2.587, 2.2, 2.4],
+                                         'ratio': [4.26, 4.1, 4.4]}}},
+             'instructions': {'camera': 1303.4, 'incoherent': 1371.2}}],
     }
 
 
@@ -74,6 +96,13 @@ class FormatTest(unittest.TestCase):
         self.assertEqual(v['count.cache'], '1\u00a0MB')
         self.assertEqual(v['setup.rays.camera'], '1,048,576')
         self.assertEqual(v['setup.compiler'], 'GCC\u00a012.2.0')
+        self.assertEqual(v['compilers.gcc-O3.L2.camera'], '11.0')
+        self.assertEqual(v['compilers.gcc-O3.L2.camera.vs'], '1.10')
+        self.assertEqual(v['compilers.gcc-O2.L2.camera.vs'], '1.00')
+        self.assertEqual(v['compilers.gcc-O3.L2.incoherent.ratio'], '4.26')
+        self.assertEqual(v['compilers.gcc-O3.L2.build'], '12.3')
+        self.assertEqual(v['compilers.gcc-O3.L2.build.vs'], '1.17')   # 14 / 12
+        self.assertEqual(v['compilers.gcc-O3.instructions.incoherent'], '1,371')
 
     def test_data_that_is_not_the_measurements_is_an_error(self):
         broken = data()
@@ -93,6 +122,25 @@ class CheckTest(unittest.TestCase):
             errors = book_numbers.check(book_numbers.values(data()), [chapter])
         self.assertEqual(errors, ["%s:2: no measured number named 'L2.sah.final.camra'"
                                   % chapter])
+
+    def run_check(self, chapter_text, data_file):
+        with tempfile.TemporaryDirectory() as tmp:
+            chapter = os.path.join(tmp, '07-x.md')
+            with open(chapter, 'w', encoding='utf-8') as f:
+                f.write(chapter_text)
+            return subprocess.run([sys.executable, os.path.join(ROOT, 'tools', 'bench',
+                                                                'book_numbers.py'),
+                                   '--check', data_file or os.path.join(tmp, 'none.json'),
+                                   chapter], capture_output=True, text=True), chapter
+
+    def test_a_book_without_measured_numbers_needs_no_data(self):
+        r, _ = self.run_check('No numbers here.\n', None)
+        self.assertEqual(r.returncode, 0, r.stderr)
+
+    def test_a_measured_number_without_the_data_is_an_error_at_its_line(self):
+        r, chapter = self.run_check('Text.\nAt [L2.sah.final.camera]{.m}.\n', None)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn(chapter + ':2:', r.stderr)
 
     def test_the_book_names_only_numbers_that_its_data_has(self):
         chapters = sorted(os.path.join(ROOT, 'chapters', f)

@@ -1,1 +1,2 @@
-"""Benchmarks of the BVH and of the edit-test loop, and their tables."""
+"""The measurements the book prints (measure.py, book_numbers.py), the benchmark's
+comparison of compilers and its tables, and the timing of the edit-test loop."""

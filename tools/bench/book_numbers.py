@@ -33,18 +33,28 @@ version (first, adopted, final) and ray set (camera, incoherent):
                                             .mispredicted, .misses
     count.ray set.first.perfinal            the first version's instructions per final one's
     count.rays, count.rows, count.cache     the samples and the simulated cache
+    compilers.NAME.Lk.camera, .ratio, .build   the final version built by
+                                            configuration NAME (gcc-O2, gcc-O3,
+                                            gcc-O3-native, clang-O2, clang-O3),
+                                            medians over the rounds
+    compilers.NAME.Lk.camera.vs, .build.vs  its speed and build time over the
+                                            first configuration's, in the same
+                                            round (median over the rounds)
+    compilers.NAME.instructions.camera      its instructions per ray (callgrind)
+    compilers.NAME.compiler, .rounds
     setup.processor, setup.compiler, setup.flags, setup.passes, setup.builds,
     setup.rays.camera, setup.rays.incoherent   the sizes of the ray sets
 """
 import json
 import math
+import statistics
 import os
 import re
 import sys
 
 RAY_SETS = {'rays_primary.bin': 'camera', 'rays_incoherent.bin': 'incoherent'}
 METHODS = {'SAH': 'sah', 'HLBVH': 'hlbvh', 'Middle': 'middle', 'EqualCounts': 'equalcounts'}
-SPAN = re.compile(r'\[([A-Za-z0-9_.]+)\]\{\.m\}')
+SPAN = re.compile(r'\[([A-Za-z0-9_.-]+)\]\{\.m\}')
 
 
 def fail(message):
@@ -65,6 +75,10 @@ def significant(x, digits=3):
         decimals = digits - 1 - math.floor(math.log10(x))
         x = round(x, decimals)
     return '%.*f' % (decimals, x)
+
+
+def median(values):
+    return statistics.median(list(values))
 
 
 def mesh_key(name, path):
@@ -133,6 +147,27 @@ def values(data, path='the measurements'):
                 counts[rays]['first']['instructions'] / counts[rays]['final']['instructions'])
         for ray_file, rays in RAY_SETS.items():
             out['setup.rays.' + rays] = thousands(setup['rays'][ray_file])
+        compilers = data.get('compilers', [])   # an older file has none
+        for c in compilers:
+            base = 'compilers.' + c['name']
+            out[base + '.compiler'] = c['compiler'].replace(' ', '\u00a0')
+            out[base + '.rounds'] = str(c['rounds'])
+            for mesh, m in c['meshes'].items():
+                # The first configuration, measured in the same rounds, is
+                # the one the others are compared with, round by round.
+                first = compilers[0]['meshes'][mesh]
+                where = '%s.%s' % (base, mesh_key(mesh, path))
+                out[where + '.build'] = significant(median(m['build_ms']))
+                out[where + '.build.vs'] = '%.2f' % median(
+                    a / b for a, b in zip(m['build_ms'], first['build_ms']))
+                for ray_file, rays in RAY_SETS.items():
+                    speeds = m[ray_file]['mrays_per_s']
+                    out['%s.%s' % (where, rays)] = significant(median(speeds))
+                    out['%s.%s.ratio' % (where, rays)] = '%.2f' % median(m[ray_file]['ratio'])
+                    out['%s.%s.vs' % (where, rays)] = '%.2f' % median(
+                        a / b for a, b in zip(speeds, first[ray_file]['mrays_per_s']))
+            for rays, n in c.get('instructions', {}).items():
+                out['%s.instructions.%s' % (base, rays)] = thousands(n)
     except (KeyError, TypeError, IndexError, ValueError, ZeroDivisionError) as e:
         fail('%s: not the data of tools/bench/measure.py: %s %s' % (path, type(e).__name__, e))
     return out
@@ -160,20 +195,34 @@ def lua(table):
     return '\n'.join(lines)
 
 
-def check(table, chapters):
-    errors = []
+def spans(chapters):
+    """(file, line, name) of every measured number the chapters name."""
+    found = []
     for chapter in chapters:
         with open(chapter, encoding='utf-8') as f:
             for number, line in enumerate(f, 1):
-                for m in SPAN.finditer(line):
-                    if m.group(1) not in table:
-                        errors.append('%s:%d: no measured number named %r' %
-                                      (chapter, number, m.group(1)))
-    return errors
+                found += [(chapter, number, m.group(1)) for m in SPAN.finditer(line)]
+    return found
+
+
+def check(table, chapters):
+    return ['%s:%d: no measured number named %r' % (chapter, line, name)
+            for chapter, line, name in spans(chapters) if name not in table]
 
 
 def main(argv):
-    if len(argv) >= 2 and argv[0] in ('--lua', '--list', '--check'):
+    if len(argv) >= 2 and argv[0] == '--check':
+        named = spans(argv[2:])
+        # A book without measured numbers (a kit of early chapters) needs no data.
+        if named and not os.path.exists(argv[1]):
+            chapter, line, name = named[0]
+            sys.exit('%s:%d: names the measured number %r, but there is no %s'
+                     % (chapter, line, name, argv[1]))
+        errors = check(load(argv[1]), argv[2:]) if named else []
+        if errors:
+            sys.exit('\n'.join(errors))
+        return
+    if len(argv) >= 2 and argv[0] in ('--lua', '--list'):
         table = load(argv[1])
         if argv[0] == '--lua' and len(argv) == 2:
             print(lua(table))
@@ -181,11 +230,6 @@ def main(argv):
         if argv[0] == '--list' and len(argv) == 2:
             for name in sorted(table):
                 print('%s\t%s' % (name, table[name]))
-            return
-        if argv[0] == '--check':
-            errors = check(table, argv[2:])
-            if errors:
-                sys.exit('\n'.join(errors))
             return
     sys.exit(__doc__)
 

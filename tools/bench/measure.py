@@ -16,7 +16,16 @@ DIR holds the shared generator's data for subdivision levels 0 to 4
    (TracePass), on L2 with the SAH trees: instructions, mispredicted branches
    and misses of a simulated 1 MB last-level cache, for 65,536 camera rays
    (the middle 64 rows of the 1024 x 1024 image) and the first 65,536
-   incoherent rays. These do not depend on the load of the machine.
+   incoherent rays. These do not depend on the load of the machine;
+3. compilers: the benchmark built five ways (GCC and Clang, -O2, -O3, and
+   GCC -O3 -march=native; `make bench-build BENCH_CXX=... BENCH_CXXFLAGS=...`),
+   the first and the final version with the SAH trees on L2 and L4, in
+   rounds that rotate the order of the configurations, so that a slow spell
+   of the machine falls on all of them alike; each round's figures, so that
+   a configuration can be compared with another within a round; and
+   callgrind's instructions per ray of the final version in each
+   configuration that valgrind can run (not -march=native, whose vector
+   instructions it may not know).
 
 The output holds the setup (processor, compiler, flags, passes, builds), the
 benchmark's results and the counts. tools/bench/book_numbers.py turns it into
@@ -44,7 +53,14 @@ SAMPLE_RAYS = 65536
 # counts only inside TracePass, the tracing).
 FILTERS = {'first': '^bunny_L2/SAH/first/', 'adopted': '^bunny_L2/SAH/(first/build|adopted/)',
            'final': '^bunny_L2/SAH/final/'}
-LL_CACHE = '1048576,16,64'   # size, associativity, line size of the simulated cache
+LL_CACHE = '1048576,16,64'
+# The compiler configurations (compiler, flags, the name the book gives it);
+# the first is the library's own, which parts 1 and 2 measure.
+CONFIGURATIONS = (('g++', '-O2', 'gcc-O2'), ('g++', '-O3', 'gcc-O3'),
+                  ('g++', '-O3 -march=native', 'gcc-O3-native'),
+                  ('clang++', '-O2', 'clang-O2'), ('clang++', '-O3', 'clang-O3'))
+ROUNDS = 5
+ROOT = os.path.dirname(os.path.dirname(HERE))   # size, associativity, line size of the simulated cache
 # callgrind's events, summed as the book reports them.
 COUNTS = {'instructions': ('Ir',), 'mispredicted_branches': ('Bcm', 'Bim'),
           'cache_misses': ('ILmr', 'DLmr', 'DLmw')}
@@ -161,6 +177,80 @@ def counts(bench, data, tmp):
     return result
 
 
+def make(*args):
+    """make in the repository, on its own rather than inside the make that ran
+    this script (its jobserver is not ours), its output to ours."""
+    env = {k: v for k, v in os.environ.items()
+           if k not in ('MAKEFLAGS', 'MFLAGS', 'MAKELEVEL', 'MAKEOVERRIDES')}
+    r = subprocess.run(['make', '--no-print-directory', '-C', ROOT] + list(args),
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    if r.returncode != 0:
+        fail('make %s failed:\n%s' % (' '.join(args), r.stdout[-4000:]))
+    return r.stdout
+
+
+def instructions_per_ray(program, data, rays, version, out):
+    # Valgrind 3.19 gives up on the DWARF 5 that Clang 14 writes; it needs
+    # only the symbols, so it runs a copy without the debugging information.
+    plain = out + '.program'
+    run(['objcopy', '--strip-debug', program, plain], 'objcopy --strip-debug ' + program)
+    run(['valgrind', '--tool=callgrind', '--toggle-collect=*TracePass*',
+         '--callgrind-out-file=' + out, plain, '--mesh', os.path.join(data, 'bunny_L2.ply'),
+         '--rays', rays, '--methods', 'sah', '--passes', '1', '--builds', '1',
+         '--benchmark_filter=' + FILTERS[version]],
+        'callgrind, %s, %s version' % (os.path.basename(program), version))
+    instructions = callgrind_totals(out).get('Ir', 0)
+    if not instructions:
+        fail('callgrind counted no instructions of %s' % program)
+    return instructions / SAMPLE_RAYS
+
+
+def compilers(data, tmp):
+    programs = []
+    for cxx, flags, name in CONFIGURATIONS:
+        config = ['BENCH_CXX=' + cxx, 'BENCH_CXXFLAGS=' + flags]
+        print('measure: building the benchmark with %s %s' % (cxx, flags), flush=True)
+        make('-j2', 'bench-build', *config)
+        program = make('-s', 'bench-path', *config).split()[0]
+        programs.append((cxx, flags, name, os.path.join(ROOT, program)))
+    runs = {name: [] for _, _, name, _ in programs}
+    for r in range(ROUNDS):
+        k = r % len(programs)
+        for cxx, flags, name, program in programs[k:] + programs[:k]:
+            out = os.path.join(tmp, '%s-%d.json' % (name, r))
+            run([program, '--data', data, '--methods', 'sah', '--passes', '1',
+                 '--builds', '1', '--benchmark_filter=first|final', '--json', out],
+                'round %d of %d: %s %s' % (r + 1, ROUNDS, cxx, flags))
+            with open(out, encoding='utf-8') as f:
+                part = json.load(f)
+            check_hits(part['results'])
+            runs[name].append(part)
+    sample = samples(data, tmp)
+    result = []
+    for cxx, flags, name, program in programs:
+        entry = {'name': name, 'cxx': cxx, 'cxxflags': flags,
+                 'compiler': runs[name][0]['compiler'], 'rounds': ROUNDS, 'meshes': {}}
+        for mesh in ('bunny_L2', 'bunny_L4'):
+            finals = [x for part in runs[name] for x in part['results']
+                      if x['mesh'] == mesh and x['version'] == 'final']
+            if len(finals) != ROUNDS:
+                fail('%s: %d results of the final version on %s, not %d'
+                     % (name, len(finals), mesh, ROUNDS))
+            # In round order: element r of every configuration is round r's.
+            m = {'build_ms': [x['build_ms'] for x in finals]}
+            for ray_file in ('rays_primary.bin', 'rays_incoherent.bin'):
+                m[ray_file] = {what: [x['rays'][ray_file][what] for x in finals]
+                               for what in ('mrays_per_s', 'ratio')}
+            entry['meshes'][mesh] = m
+        if '-march=native' not in flags:
+            entry['instructions'] = {
+                rays: instructions_per_ray(program, data, sample[rays], 'final',
+                                           os.path.join(tmp, 'cg.%s.%s' % (name, rays)))
+                for rays in ('camera', 'incoherent')}
+        result.append(entry)
+    return result
+
+
 def valgrind_version():
     r = subprocess.run(['valgrind', '--version'], stdout=subprocess.PIPE, text=True)
     return r.stdout.strip()
@@ -181,11 +271,13 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         setup, results = speeds(args.bench, args.data, tmp, args.passes, args.builds)
         measured = counts(args.bench, args.data, tmp)
+        configurations = compilers(args.data, tmp)
     setup['processor'] = processor()
     setup['rays'] = {name: os.path.getsize(os.path.join(args.data, name)) // RAY_BYTES
                      for name in ('rays_primary.bin', 'rays_incoherent.bin')}
     setup['valgrind'] = valgrind_version()
-    data = {'setup': setup, 'results': results, 'counts': measured}
+    data = {'setup': setup, 'results': results, 'counts': measured,
+            'compilers': configurations}
     text = json.dumps(data, indent=1, sort_keys=True)
     tmp_out = args.out + '.tmp'
     with open(tmp_out, 'w', encoding='utf-8') as f:

@@ -16,7 +16,8 @@ $(HTML_OUT)/index.html: book.md $(wildcard references.bib) $(CHAPTERS) tools/boo
                         $(wildcard tools/book/html*.lua) tools/book/fragments.lua \
                         tools/noweb/chunks.py tools/book/exercises.lua tools/book/latex_text.lua \
                         tools/book/edition.lua tools/book/indexes.lua \
-                        tools/book/measured.lua tools/bench/book_numbers.py $(MEASUREMENTS) \
+                        tools/book/measured.lua tools/bench/book_numbers.py $(wildcard $(MEASUREMENTS)) \
                         tools/book/tikz-preamble.tex $(wildcard tools/book/web/*) \
                         $(wildcard figures/*) | $(LINTED)
+	$(LINT_NUMBERS)
 	python3 tools/book/html_site.py --out $(HTML_OUT) --cache $(HTML_CACHE) book.md $(CHAPTERS)

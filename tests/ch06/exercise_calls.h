@@ -338,23 +338,30 @@ inline BuiltBVH BuildBVH(SceneValue scene, int maxPrimsInNode,
     return built;
 }
 
-// Intersect() (or, with anyHit, IntersectP()) of a kept accelerator.
-inline TraceResult TraceRay(calls::Handle accelerator, Ray ray, bool anyHit,
-                            bool log) {
-    KeptAccelerator &kept = calls::Find<KeptAccelerator>(accelerator);
-    const Primitive *accel = kept.bvh.get();
+// Intersect() (or, with anyHit, IntersectP()) of `accel`, an accelerator
+// over kept.prims, answered with indices into the scene; chapter 7's calls
+// trace their FastBVHAccel with it too.
+inline TraceResult TraceKept(KeptAccelerator &kept, const Primitive &accel,
+                             Ray ray, bool anyHit, bool log) {
     kept.tested.clear();
     TraceResult result{false, ray.tMax, -1, {}};
     if (anyHit) {
-        result.hit = accel->IntersectP(ray);
+        result.hit = accel.IntersectP(ray);
     } else {
         SurfaceInteraction si;
-        result.hit = accel->Intersect(ray, &si);
+        result.hit = accel.Intersect(ray, &si);
         result.tMax = ray.tMax;
         if (result.hit) result.primitive = kept.IndexOf(si.primitive);
     }
     if (log) result.tested = kept.tested;
     return result;
+}
+
+// Intersect() (or, with anyHit, IntersectP()) of a kept BVHAccel.
+inline TraceResult TraceRay(calls::Handle accelerator, Ray ray, bool anyHit,
+                            bool log) {
+    KeptAccelerator &kept = calls::Find<KeptAccelerator>(accelerator);
+    return TraceKept(kept, *kept.bvh, ray, anyHit, log);
 }
 
 // The Morton code functions of Section 6.5.

@@ -119,19 +119,7 @@ inline BuiltFastBVH BuildFastBVH(SceneValue scene, int maxPrimsInNode,
 inline TraceResult TraceFastRay(calls::Handle accelerator, Ray ray,
                                 bool anyHit, bool log) {
     KeptFastAccelerator &kept = calls::Find<KeptFastAccelerator>(accelerator);
-    const Primitive *accel = kept.fast.get();
-    kept.tested.clear();
-    TraceResult result{false, ray.tMax, -1, {}};
-    if (anyHit) {
-        result.hit = accel->IntersectP(ray);
-    } else {
-        SurfaceInteraction si;
-        result.hit = accel->Intersect(ray, &si);
-        result.tMax = ray.tMax;
-        if (result.hit) result.primitive = kept.IndexOf(si.primitive);
-    }
-    if (log) result.tested = kept.tested;
-    return result;
+    return TraceKept(kept, *kept.fast, ray, anyHit, log);
 }
 
 }  // namespace direct

@@ -1,6 +1,7 @@
 // Checks of FastBVHAccel's trees for chapter 7's exercise tests, public and
-// hidden (the hidden tests include this file as "../../ch07/fastbvh_checks.h").
-// The trees are the worker's (ex::FastBVHAccel, remote_fastbvh.h), already
+// hidden (the hidden tests include this file as "../../ch07/fastbvh_checks.h"),
+// and for chapter 8's tests of the book's FastBVHAccel. The exercise tests'
+// trees are the worker's (ex::FastBVHAccel, remote_fastbvh.h), already
 // checked there to be trees.
 //
 //   CheckStructure      boxes, leaves and counts of a four-wide tree;
@@ -16,7 +17,17 @@
 //   CheckSAHDecisions   every decision of the binned SAH, recovered from the
 //                       order of the primitives in the leaves, against the
 //                       cost model evaluated in double precision;
-//   RandomBoxScene      scenes of boxes as primitives, for the last three.
+//   CheckEveryOctant    rays in every octant, zeros of either sign, against
+//                       brute force;
+//   RaysWithNaNAndInfinity, ExpectSameAnswers
+//                       rays that pass every box test (a NaN rejects
+//                       nothing) or have infinite components, and the
+//                       agreement of several trees on them;
+//   RandomBoxScene      scenes of boxes as primitives, for CheckLeavesTested,
+//                       CheckCollapse and CheckSAHDecisions.
+//
+// Chapter 8's tests of FastBVHAccel as the book writes it (lrt::FastBVHAccel)
+// use the helpers that take either kind of tree or any Primitive.
 
 #pragma once
 
@@ -57,15 +68,17 @@ inline bool IsDegenerate(const Triangle &tri) {
     return Cross(p0 - p2, p1 - p2).LengthSquared() == 0;
 }
 
-// The structure of a FastBVHAccel, as CheckStructure() checks a
-// BVHAccel's (bvh_scenes.h): its boxes are stored in the parents, whose
-// nodes have two to four children (unused slots hold an empty box and an
-// empty leaf), and whose leaves put triangles, with their vertices copied,
-// first. (For a tree over the test's own primitives: not over the worker's
-// logged copies, which are no triangles.)
-inline void CheckStructure(
-    const ex::FastBVHAccel &bvh,
-    const std::vector<std::shared_ptr<Primitive>> &input) {
+// The structure of a FastBVHAccel (lrt::FastBVHAccel, or the worker's
+// ex::FastBVHAccel), as CheckStructure() checks a BVHAccel's
+// (bvh_scenes.h): its boxes are stored in the parents, whose nodes have two
+// to four children (unused slots hold an empty box and an empty leaf), and
+// whose leaves put triangles, with their vertices copied, first. (For a tree
+// over the test's own primitives: not over the worker's logged copies, which
+// are no triangles.) The worker's trees were checked to be trees when they
+// arrived; the book's are checked here, so that no index leaves the arrays.
+template <typename FastBVH>
+void CheckFastStructure(const FastBVH &bvh,
+                        const std::vector<std::shared_ptr<Primitive>> &input) {
     const auto &nodes = bvh.Nodes();
     const auto &prims = bvh.Primitives();
     const auto &tris = bvh.Triangles();
@@ -80,9 +93,9 @@ inline void CheckStructure(
         EXPECT_TRUE(bvh.WorldBound().IsEmpty());
         return;
     }
+    std::vector<int> visited(nodes.size(), 0), covered(prims.size(), 0);
     int maxDepth = 0, leaves = 0;
     int64_t children = 0;
-    std::vector<int> covered(prims.size(), 0);
     std::function<Bounds3f(FastBVHChild, int)> visit =
         [&](FastBVHChild c, int depth) -> Bounds3f {
         maxDepth = std::max(maxDepth, depth);
@@ -90,7 +103,10 @@ inline void CheckStructure(
         if (c.IsLeaf()) {
             ++leaves;
             EXPECT_LE(c.NPrimitives(), bvh.MaxPrimsInNode());
-            for (int i = 0; i < c.NPrimitives(); ++i) {
+            EXPECT_LE(size_t(c.offset) + c.NPrimitives(), prims.size());
+            for (int i = 0; i < c.NPrimitives() &&
+                            size_t(c.offset) + i < prims.size();
+                 ++i) {
                 size_t k = c.offset + i;
                 covered[k]++;
                 b = Union(b, prims[k]->WorldBound());
@@ -109,11 +125,18 @@ inline void CheckStructure(
             }
             return b;
         }
+        if (c.offset >= nodes.size() || depth > maxBVHDepth) {
+            ADD_FAILURE() << "bad node index " << c.offset << " at depth "
+                          << depth;
+            return b;
+        }
+        visited[c.offset]++;
         const FastBVHNode &n = nodes[c.offset];
         int used = 0;
         for (int k = 0; k < fastBVHWidth; ++k) {
             if (n.child[k].IsEmpty()) {
                 // An unused slot: no box a ray could enter, nothing to visit.
+                EXPECT_TRUE(n.child[k].IsLeaf());
                 Bounds3f bk = BoxOf(n, k);
                 for (int a = 0; a < 3; ++a) {
                     EXPECT_EQ(bk.pMin[a], Infinity) << "node " << c.offset;
@@ -133,14 +156,30 @@ inline void CheckStructure(
         return b;
     };
     EXPECT_EQ(visit(bvh.Root(), 0), bvh.WorldBound());
+    for (size_t i = 0; i < visited.size(); ++i)
+        ASSERT_EQ(visited[i], 1) << "node " << i;
     for (size_t i = 0; i < covered.size(); ++i)
         ASSERT_EQ(covered[i], 1) << "primitive " << i;
+    EXPECT_LE(maxDepth, maxBVHDepth);
     EXPECT_EQ(s.interiorNodes, int64_t(nodes.size()));
     EXPECT_EQ(s.leafNodes, leaves);
     // Every node but the root is the child of exactly one interior node.
     EXPECT_EQ(children + 1, s.TotalNodes());
     EXPECT_EQ(s.primitives, int64_t(prims.size()));
     EXPECT_EQ(s.maxDepth, maxDepth);
+}
+
+// CheckStructure() for both kinds of FastBVHAccel, beside chapter 6's
+// template for the BVHAccels (an exact match is chosen over the template).
+inline void CheckStructure(
+    const ex::FastBVHAccel &bvh,
+    const std::vector<std::shared_ptr<Primitive>> &input) {
+    CheckFastStructure(bvh, input);
+}
+inline void CheckStructure(
+    const lrt::FastBVHAccel &bvh,
+    const std::vector<std::shared_ptr<Primitive>> &input) {
+    CheckFastStructure(bvh, input);
 }
 
 // ---------------------------------------------------------------------------
@@ -177,6 +216,16 @@ inline Entered EntersBox(const Bounds3f &b, const Ray &ray) {
 struct LeavesTested {
     int rays = 0, surelyTested = 0, maybe = 0;
 };
+
+// Where each primitive of the scene stands in the tree's order, to turn the
+// log of a scene's primitives into indices of bvh.Primitives().
+inline std::map<const Primitive *, int> Positions(
+    const ex::FastBVHAccel &bvh) {
+    std::map<const Primitive *, int> at;
+    for (size_t k = 0; k < bvh.Primitives().size(); ++k)
+        at[bvh.Primitives()[k].get()] = int(k);
+    return at;
+}
 
 // The primitives that IntersectP() tested, in `tested` (their indices in
 // bvh.Primitives(), in order), for a ray that hits none of them: every
@@ -363,6 +412,18 @@ inline void CheckCollapse(const ex::FastBVHAccel &bvh, CollapseCount *count,
     match(0, bvh.Root());
 }
 
+// The worker's FastBVHAccel adopting the tree of a BVHAccel built with
+// method m over `scene`: its structure, and the collapse of every node.
+// `name` names the scene in failures.
+inline void CheckAdoptedTree(const Scene &scene, SplitMethod m, int leafSize,
+                             CollapseCount *count, const std::string &name) {
+    ex::FastBVHAccel bvh(scene, leafSize, m, true);
+    CheckStructure(bvh, scene.prims);
+    CheckCollapse(bvh, count,
+                  name + ", " + MethodName(m) + "(" +
+                      std::to_string(leafSize) + ")");
+}
+
 // ---------------------------------------------------------------------------
 // The binned SAH
 
@@ -507,6 +568,115 @@ inline void CheckSAHDecisions(const ex::FastBVHAccel &bvh, SAHCount *count,
         fail(s, e, "split at no bin boundary of least cost");
     };
     check(0, int(prims.size()), 0);
+}
+
+// The worker's FastBVHAccel built with the SAH over `scene`, a scene of
+// boxes: its structure, and every decision of the build. `name` names the
+// scene in failures.
+inline void CheckSAHTree(const Scene &scene, int leafSize, SAHCount *count,
+                         const std::string &name) {
+    ex::FastBVHAccel bvh(scene, leafSize, SplitMethod::SAH);
+    CheckStructure(bvh, scene.prims);
+    CheckSAHDecisions(bvh, count,
+                      name + ", " + std::to_string(scene.prims.size()) +
+                          " boxes, maxPrimsInNode " + std::to_string(leafSize));
+}
+
+// ---------------------------------------------------------------------------
+// Rays in every octant, and rays with NaN and infinite components
+
+// Traces rays in every octant of direction through each of `accels`, built
+// over `scene`, against brute force: directions whose components are 0,
+// 0.25 or 1 in magnitude, zeros signed as the octant says (the reciprocal
+// turns the sign of a zero into that of an infinity, which picks the
+// octant's planes), with lines through the middle of the scene. Counts in
+// hitsPerOctant[octant] the rays that brute force finds a hit for.
+inline void CheckEveryOctant(std::mt19937_64 &rng, const Scene &scene,
+                             const std::vector<const Primitive *> &accels,
+                             int hitsPerOctant[8]) {
+    const Float magnitudes[] = {0, Float(0.25), 1};
+    Point3f c = scene.bounds.pMin * Float(0.5) + scene.bounds.pMax * Float(0.5);
+    double r = scene.bounds.Diagonal().Length() / 2;
+    for (int octant = 0; octant < 8; ++octant)
+        for (Float mx : magnitudes)
+            for (Float my : magnitudes)
+                for (Float mz : magnitudes) {
+                    if (mx == 0 && my == 0 && mz == 0) continue;
+                    Vector3f d(octant & 1 ? -mx : mx, octant & 2 ? -my : my,
+                               octant & 4 ? -mz : mz);
+                    Ray ray(RandomPoint(rng, c, 0.4 * r) -
+                                Normalize(d) * Float(U(rng, 0, 3 * r)),
+                            d);
+                    Oracle o = BruteForce(scene.prims, ray);
+                    if (!o.hits.empty()) ++hitsPerOctant[octant];
+                    for (const Primitive *a : accels) {
+                        std::string e = Compare(*a, ray, o);
+                        EXPECT_TRUE(e.empty()) << "octant " << octant
+                                               << ", ray " << ray << ": " << e;
+                    }
+                }
+}
+
+// 300 small triangles at random near the origin.
+inline Scene SmallTriangles(std::mt19937_64 &rng) {
+    Scene scene;
+    for (int i = 0; i < 300; ++i) {
+        Point3f a = RandomPoint(rng, Point3f(0, 0, 0), 2);
+        scene.AddTriangles({a, a + RandomDirection(rng) * Float(0.3),
+                            a + RandomDirection(rng) * Float(0.3)},
+                           {0, 1, 2});
+    }
+    return scene;
+}
+
+// Rays that are NaN in every component, in the origin or the direction
+// alone, or on one axis; rays with an infinite component; and n more rays
+// near SmallTriangles(), NaN on one axis of the origin or the direction.
+inline std::vector<Ray> RaysWithNaNAndInfinity(std::mt19937_64 &rng, int n) {
+    const Float nan = std::numeric_limits<Float>::quiet_NaN();
+    const Float inf = Infinity;
+    std::vector<Ray> rays;
+    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(nan, nan, nan)));
+    rays.push_back(Ray(Point3f(0, 0, 0), Vector3f(nan, nan, nan)));
+    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(0, 0, 1)));
+    rays.push_back(Ray(Point3f(-5, 0, 0), Vector3f(1, nan, 0)));
+    rays.push_back(Ray(Point3f(-5, 0.1f, 0.2f), Vector3f(inf, 0, 0)));
+    rays.push_back(Ray(Point3f(-inf, 0, 0), Vector3f(1, 0, 0)));
+    for (int i = 0; i < n; ++i) {
+        Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 4);
+        Vector3f d = RandomDirection(rng);
+        int axis = i % 3;
+        if (i % 2) d[axis] = nan;
+        else o[axis] = nan;
+        rays.push_back(Ray(o, d));
+    }
+    return rays;
+}
+
+// Every ray ends, and gets from each of `accels` the answer of the first:
+// whether Intersect() and IntersectP() hit, and where (two NaN distances
+// count as the same).
+inline void ExpectSameAnswers(const std::vector<const Primitive *> &accels,
+                              const std::vector<Ray> &rays) {
+    for (const Ray &ray : rays) {
+        Ray r0 = ray;
+        SurfaceInteraction si0;
+        bool h0 = accels[0]->Intersect(r0, &si0);
+        bool p0 = accels[0]->IntersectP(ray);
+        for (size_t k = 1; k < accels.size(); ++k) {
+            Ray r = ray;
+            SurfaceInteraction si;
+            bool h = accels[k]->Intersect(r, &si);
+            EXPECT_EQ(h0, h) << "accelerator " << k << ", ray " << ray;
+            EXPECT_EQ(p0, accels[k]->IntersectP(ray))
+                << "accelerator " << k << ", ray " << ray;
+            if (h0 && h) {
+                EXPECT_TRUE(r0.tMax == r.tMax ||
+                            (std::isnan(r0.tMax) && std::isnan(r.tMax)))
+                    << "accelerator " << k << ", ray " << ray;
+            }
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------

@@ -65,14 +65,6 @@ AccelSet Fast(std::vector<SplitMethod> methods, bool adopted) {
 const std::vector<SplitMethod> kAdoptedMethods = {
     SplitMethod::HLBVH, SplitMethod::Middle, SplitMethod::EqualCounts};
 
-// Where each primitive of the scene stands in the tree's order.
-std::map<const Primitive *, int> Positions(const ex::FastBVHAccel &bvh) {
-    std::map<const Primitive *, int> at;
-    for (size_t k = 0; k < bvh.Primitives().size(); ++k)
-        at[bvh.Primitives()[k].get()] = int(k);
-    return at;
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -143,38 +135,13 @@ EXERCISE_TEST(Ex7_8_FourBoxes, TestsExactlyTheLeavesWhoseBoxesTheRayEnters) {
 // reciprocal decides), must find what brute force finds.
 EXERCISE_TEST(Ex7_8_FourBoxes, EveryOctantWithSignedZeros) {
     std::mt19937_64 rng(calls::Seed(6177));
-    const Float magnitudes[] = {0, Float(0.25), 1};
     int hitsPerOctant[8] = {};
     const int scenes = calls::Cases(20, 6);
     for (int sceneIndex = 0; sceneIndex < scenes; ++sceneIndex) {
         Scene scene = RandomScene(rng);
         ex::FastBVHAccel middle(scene, 4, SplitMethod::Middle);
         ex::FastBVHAccel equal(scene, 1, SplitMethod::EqualCounts);
-        for (int octant = 0; octant < 8; ++octant)
-            for (Float mx : magnitudes)
-                for (Float my : magnitudes)
-                    for (Float mz : magnitudes) {
-                        if (mx == 0 && my == 0 && mz == 0) continue;
-                        // Negative zero where the octant says negative.
-                        Vector3f d(octant & 1 ? -mx : mx,
-                                   octant & 2 ? -my : my,
-                                   octant & 4 ? -mz : mz);
-                        // Aim the ray's line near the scene's center.
-                        Point3f c = scene.bounds.pMin * Float(0.5) +
-                                    scene.bounds.pMax * Float(0.5);
-                        double r = scene.bounds.Diagonal().Length() / 2;
-                        Ray ray(RandomPoint(rng, c, 0.4 * r) -
-                                    Normalize(d) * Float(U(rng, 0, 3 * r)),
-                                d);
-                        Oracle o = BruteForce(scene.prims, ray);
-                        if (!o.hits.empty()) ++hitsPerOctant[octant];
-                        for (const ex::FastBVHAccel *a : {&middle, &equal}) {
-                            std::string e = Compare(*a, ray, o);
-                            EXPECT_TRUE(e.empty())
-                                << "octant " << octant << ", ray " << ray
-                                << ": " << e;
-                        }
-                    }
+        CheckEveryOctant(rng, scene, {&middle, &equal}, hitsPerOctant);
     }
     for (int octant = 0; octant < 8; ++octant)
         EXPECT_GT(hitsPerOctant[octant], 2 * scenes) << "octant " << octant;
@@ -188,51 +155,12 @@ EXERCISE_TEST(Ex7_8_FourBoxes, EveryOctantWithSignedZeros) {
 // tree, and brute force's where it has one.
 EXERCISE_TEST(Ex7_8_FourBoxes, RaysWithNaNAndInfinity) {
     std::mt19937_64 rng(calls::Seed(616));
-    Scene scene;
-    for (int i = 0; i < 300; ++i) {
-        Point3f a = RandomPoint(rng, Point3f(0, 0, 0), 2);
-        scene.AddTriangles({a, a + RandomDirection(rng) * Float(0.3),
-                            a + RandomDirection(rng) * Float(0.3)},
-                           {0, 1, 2});
-    }
-    const Float nan = std::numeric_limits<Float>::quiet_NaN();
-    const Float inf = Infinity;
-    std::vector<Ray> rays;
-    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(nan, nan, nan)));
-    rays.push_back(Ray(Point3f(0, 0, 0), Vector3f(nan, nan, nan)));
-    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(0, 0, 1)));
-    rays.push_back(Ray(Point3f(-5, 0, 0), Vector3f(1, nan, 0)));
-    rays.push_back(Ray(Point3f(-5, 0.1f, 0.2f), Vector3f(inf, 0, 0)));
-    rays.push_back(Ray(Point3f(-inf, 0, 0), Vector3f(1, 0, 0)));
-    for (int i = 0; i < calls::Cases(200, 60); ++i) {
-        Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 4);
-        Vector3f d = RandomDirection(rng);
-        int axis = i % 3;
-        if (i % 2) d[axis] = nan;
-        else o[axis] = nan;
-        rays.push_back(Ray(o, d));
-    }
+    Scene scene = SmallTriangles(rng);
+    std::vector<Ray> rays = RaysWithNaNAndInfinity(rng, calls::Cases(200, 60));
     ex::FastBVHAccel middle(scene, 4, SplitMethod::Middle);
     ex::FastBVHAccel equal(scene, 2, SplitMethod::EqualCounts);
     BVHAccel reference(scene.prims, 4, SplitMethod::Middle);
-    for (const Ray &ray : rays) {
-        Ray r[3] = {ray, ray, ray};
-        SurfaceInteraction si[3];
-        bool h[3] = {reference.Intersect(r[0], &si[0]),
-                     middle.Intersect(r[1], &si[1]),
-                     equal.Intersect(r[2], &si[2])};
-        bool p[3] = {reference.IntersectP(ray), middle.IntersectP(ray),
-                     equal.IntersectP(ray)};
-        for (int k = 1; k < 3; ++k) {
-            EXPECT_EQ(h[0], h[k]) << ray;
-            EXPECT_EQ(p[0], p[k]) << ray;
-            if (h[0] && h[k]) {
-                EXPECT_TRUE(r[0].tMax == r[k].tMax ||
-                            (std::isnan(r[0].tMax) && std::isnan(r[k].tMax)))
-                    << ray;
-            }
-        }
-    }
+    ExpectSameAnswers({&reference, &middle, &equal}, rays);
 }
 
 // ---------------------------------------------------------------------------
@@ -255,11 +183,8 @@ EXERCISE_TEST(Ex7_9_FourChildren, GreedyCollapseOfAdoptedTrees) {
             sceneIndex % 3 ? RandomBoxScene(rng, n) : RandomScene(rng);
         SplitMethod m = methods[rng() % 4];
         int leafSize = 1 + int(rng() % 4);
-        ex::FastBVHAccel bvh(scene, leafSize, m, true);
-        CheckStructure(bvh, scene.prims);
-        CheckCollapse(bvh, &count,
-                      "scene " + std::to_string(sceneIndex) + ", " +
-                          MethodName(m) + "(" + std::to_string(leafSize) + ")");
+        CheckAdoptedTree(scene, m, leafSize, &count,
+                         "scene " + std::to_string(sceneIndex));
         if (::testing::Test::HasFailure()) return;
     }
     // Nodes opened more than one child on average, and many have four.
@@ -295,12 +220,8 @@ EXERCISE_TEST(Ex7_10_BinnedSAH, DecisionsFollowTheCostModel) {
         if (rng() % 6 == 0) n += int(rng() % 400);
         Scene scene = RandomBoxScene(rng, n);
         int leafSize = leafSizes[rng() % 8];
-        ex::FastBVHAccel bvh(scene, leafSize, SplitMethod::SAH);
-        CheckStructure(bvh, scene.prims);
-        CheckSAHDecisions(bvh, &count,
-                          "scene " + std::to_string(sceneIndex) + ", " +
-                              std::to_string(n) + " boxes, maxPrimsInNode " +
-                              std::to_string(leafSize));
+        CheckSAHTree(scene, leafSize, &count,
+                     "scene " + std::to_string(sceneIndex));
         if (::testing::Test::HasFailure()) return;
     }
     EXPECT_GT(count.decisions, 5 * scenes);

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace lrt {
@@ -221,6 +222,31 @@ inline double Ulp(Float x) {
     return double(std::nextafter(x, Infinity)) - double(x);
 }
 
+// Checks the end of a shadow ray s for case c: o + d is the light, and the
+// ray stops just short of it.
+inline void CheckEndsShortOfTheLight(const ShadowCase &c, const Ray &s,
+                                     const std::string &what) {
+    V3 end = D(s.o) + D(s.d), light = D(c.pLight);
+    double scale = Norm(light) + Norm(D(s.o));
+    EXPECT_LT(Norm(end - light), 4 * kEps * scale) << what;
+    EXPECT_LT(s.tMax, 1) << what;
+    EXPECT_GT(s.tMax, 0.999) << what;
+}
+
+// Checks a shadow ray s spawned with the fixed offset for case c: it starts
+// at the ray equation's point o + t d moved by c.epsilon along n, the unit
+// normal turned toward the eye, and ends just short of the light.
+inline void CheckFixedEpsilonRay(const ShadowCase &c, V3 n, const Ray &s,
+                                 const std::string &what) {
+    V3 q = D(c.ray.o) + double(c.ray.tMax) * D(c.ray.d);
+    V3 want = q + double(c.epsilon) * n;
+    double tol = 8 * kEps * (Norm(D(c.ray.o)) + Norm(q) + double(c.epsilon));
+    EXPECT_LT(Norm(D(s.o) - want), tol)
+        << what << ": the origin is " << Norm(D(s.o) - want)
+        << " from o + t d + epsilon n";
+    CheckEndsShortOfTheLight(c, s, what);
+}
+
 // Checks a shadow ray spawned with the error bounds at hit h: it starts
 // outside the error box of the hit point, on the light's side, no farther
 // than the box requires; it ends just short of the light; and it does not
@@ -240,12 +266,7 @@ inline void CheckErrorBoundsRay(const ShadowHit &h, const Ray &s, const char *wh
         EXPECT_LE(std::abs(fromP[i]), support * std::abs(nn[i]) * 1.001 +
                                           3 * std::max(Ulp(pc[i]), Ulp(oc[i])))
             << what << ": too far on axis " << i;
-    // The segment: o + d is the light, and the ray stops just short of it.
-    V3 end = o + D(s.d), light = D(c.pLight);
-    double scale = Norm(light) + Norm(o);
-    EXPECT_LT(Norm(end - light), 4 * kEps * scale) << what;
-    EXPECT_LT(s.tMax, 1) << what;
-    EXPECT_GT(s.tMax, 0.999) << what;
+    CheckEndsShortOfTheLight(c, s, what);
     EXPECT_FALSE(h.shape->IntersectP(s)) << what << ": hits its own surface";
 }
 

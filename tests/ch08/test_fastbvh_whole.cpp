@@ -4,8 +4,10 @@
 // spheres, disks and triangles; structure invariants of every tree built;
 // degenerate inputs; its triangle test against Triangle::Intersect(), bit
 // for bit; its hits against BVHAccel's; rays with NaN and infinite
-// components in every octant. The scenes, oracles and checks are chapter
-// 6's (bvh_scenes.h), which the tests of BVHAccel use too.
+// components in every octant. The scenes and oracles are chapter 6's
+// (bvh_scenes.h), which the tests of BVHAccel use too; the checks of the
+// four-wide trees and the rays in every octant and with NaN components are
+// those of chapter 7's exercise tests (fastbvh_checks.h).
 //
 // They live with chapter 8's tests because every ray they trace runs the
 // code of chapter 7's graded exercises (the box test, the collapse into
@@ -16,6 +18,7 @@
 
 #include "ch06/bvh_checks.h"
 #include "ch06/bvh_scenes.h"
+#include "ch07/fastbvh_checks.h"
 #include "lrt/accelerators/fastbvh.h"
 
 #include <gtest/gtest.h>
@@ -40,123 +43,6 @@ namespace {
 // adopting BVHAccel's tree (Middle and EqualCounts).
 const std::vector<SplitMethod> kPlainMethods = {
     SplitMethod::SAH, SplitMethod::Middle, SplitMethod::EqualCounts};
-
-
-// A triangle whose geometric normal, computed as Triangle::Intersect()
-// computes it, is zero: no ray can hit it.
-bool IsDegenerate(const Triangle &tri) {
-    Point3f p0, p1, p2;
-    tri.GetVertices(&p0, &p1, &p2);
-    return Cross(p0 - p2, p1 - p2).LengthSquared() == 0;
-}
-
-// BVHAccel's structure is checked by chapter 6's CheckStructure(), which
-// the one for FastBVHAccel below overloads.
-using lrt_test::CheckStructure;
-
-// A child's box in a FastBVHNode: bounds[axis][min or max][child].
-Bounds3f BoxOf(const FastBVHNode &n, int c) {
-    Bounds3f r;
-    r.pMin = Point3f(n.bounds[0][0][c], n.bounds[1][0][c], n.bounds[2][0][c]);
-    r.pMax = Point3f(n.bounds[0][1][c], n.bounds[1][1][c], n.bounds[2][1][c]);
-    return r;
-}
-
-// The structure of a FastBVHAccel, as CheckStructure() checks a
-// BVHAccel's (bvh_scenes.h): its boxes are stored in the parents, whose
-// nodes have two to four children (unused slots hold an empty box and an
-// empty leaf), and whose leaves put triangles, with their vertices copied,
-// first.
-void CheckStructure(const FastBVHAccel &bvh,
-                    const std::vector<std::shared_ptr<Primitive>> &input) {
-    const auto &nodes = bvh.Nodes();
-    const auto &prims = bvh.Primitives();
-    const auto &tris = bvh.Triangles();
-    std::multiset<const Primitive *> got;
-    for (const auto &p : prims) got.insert(p.get());
-    ASSERT_EQ(got, ValidPrimitives(input));
-    ASSERT_EQ(tris.size(), prims.size());
-    BVHStats s = bvh.Stats();
-    if (prims.empty()) {
-        EXPECT_TRUE(nodes.empty());
-        EXPECT_EQ(s.TotalNodes(), 0);
-        EXPECT_TRUE(bvh.WorldBound().IsEmpty());
-        return;
-    }
-    std::vector<int> visited(nodes.size(), 0), covered(prims.size(), 0);
-    int maxDepth = 0, leaves = 0;
-    int64_t children = 0;
-    std::function<Bounds3f(FastBVHChild, int)> visit =
-        [&](FastBVHChild c, int depth) -> Bounds3f {
-        maxDepth = std::max(maxDepth, depth);
-        Bounds3f b;
-        if (c.IsLeaf()) {
-            ++leaves;
-            EXPECT_LE(c.NPrimitives(), bvh.MaxPrimsInNode());
-            EXPECT_LE(size_t(c.offset) + c.NPrimitives(), prims.size());
-            for (int i = 0; i < c.NPrimitives() &&
-                            size_t(c.offset) + i < prims.size();
-                 ++i) {
-                size_t k = c.offset + i;
-                covered[k]++;
-                b = Union(b, prims[k]->WorldBound());
-                const Triangle *tri = AsTriangle(prims[k].get());
-                if (tri && IsDegenerate(*tri)) tri = nullptr;
-                EXPECT_EQ(tri != nullptr, i < c.nTriangles) << k;
-                if (tri) {
-                    Point3f q[3];
-                    tri->GetVertices(&q[0], &q[1], &q[2]);
-                    for (int a = 0; a < 3; ++a) {
-                        for (int j = 0; j < 3; ++j)
-                            EXPECT_EQ(tris[k].c[a][j], q[j][a]);
-                        EXPECT_EQ(tris[k].c[a][3], 0);
-                    }
-                }
-            }
-            return b;
-        }
-        if (c.offset >= nodes.size()) {
-            ADD_FAILURE() << "bad node index " << c.offset;
-            return b;
-        }
-        visited[c.offset]++;
-        const FastBVHNode &n = nodes[c.offset];
-        int used = 0;
-        for (int k = 0; k < fastBVHWidth; ++k) {
-            if (n.child[k].IsEmpty()) {
-                // An unused slot: no box a ray could enter, nothing to visit.
-                EXPECT_TRUE(n.child[k].IsLeaf());
-                Bounds3f bk = BoxOf(n, k);
-                for (int a = 0; a < 3; ++a) {
-                    EXPECT_EQ(bk.pMin[a], Infinity) << "node " << c.offset;
-                    EXPECT_EQ(bk.pMax[a], -Infinity) << "node " << c.offset;
-                }
-                continue;
-            }
-            // Used slots come first.
-            EXPECT_EQ(k, used) << "node " << c.offset;
-            ++used;
-            Bounds3f bk = visit(n.child[k], depth + 1);
-            EXPECT_EQ(BoxOf(n, k), bk) << "node " << c.offset;
-            b = Union(b, bk);
-        }
-        EXPECT_GE(used, 2) << "node " << c.offset;
-        children += used;
-        return b;
-    };
-    EXPECT_EQ(visit(bvh.Root(), 0), bvh.WorldBound());
-    for (size_t i = 0; i < visited.size(); ++i)
-        ASSERT_EQ(visited[i], 1) << "node " << i;
-    for (size_t i = 0; i < covered.size(); ++i)
-        ASSERT_EQ(covered[i], 1) << "primitive " << i;
-    EXPECT_LE(maxDepth, maxBVHDepth);
-    EXPECT_EQ(s.interiorNodes, int64_t(nodes.size()));
-    EXPECT_EQ(s.leafNodes, leaves);
-    // Every node but the root is the child of exactly one interior node.
-    EXPECT_EQ(children + 1, s.TotalNodes());
-    EXPECT_EQ(s.primitives, int64_t(prims.size()));
-    EXPECT_EQ(s.maxDepth, maxDepth);
-}
 
 void AddAdopted(std::vector<Accel> *v, const BVHAccel &bvh,
                 const Prims &prims, SplitMethod m, int leafSize) {
@@ -418,51 +304,12 @@ TEST(FastBVHAccel, DegenerateTrianglesStayOutOfTheFastPath) {
 // this test runs in the student edition too.)
 TEST(FastBVHAccel, RaysWithNaNAndInfinityEndAndAgreeAcrossTrees) {
     std::mt19937_64 rng(616);
-    Scene scene;
-    for (int i = 0; i < 300; ++i) {
-        Point3f a = RandomPoint(rng, Point3f(0, 0, 0), 2);
-        scene.AddTriangles({a, a + RandomDirection(rng) * Float(0.3),
-                            a + RandomDirection(rng) * Float(0.3)},
-                           {0, 1, 2});
-    }
-    const Float nan = std::numeric_limits<Float>::quiet_NaN();
-    const Float inf = Infinity;
-    std::vector<Ray> rays;
-    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(nan, nan, nan)));
-    rays.push_back(Ray(Point3f(0, 0, 0), Vector3f(nan, nan, nan)));
-    rays.push_back(Ray(Point3f(nan, nan, nan), Vector3f(0, 0, 1)));
-    rays.push_back(Ray(Point3f(-5, 0, 0), Vector3f(1, nan, 0)));
-    rays.push_back(Ray(Point3f(-5, 0.1f, 0.2f), Vector3f(inf, 0, 0)));
-    rays.push_back(Ray(Point3f(-inf, 0, 0), Vector3f(1, 0, 0)));
-    for (int i = 0; i < 200; ++i) {
-        Point3f o = RandomPoint(rng, Point3f(0, 0, 0), 4);
-        Vector3f d = RandomDirection(rng);
-        int axis = i % 3;
-        if (i % 2) d[axis] = nan;
-        else o[axis] = nan;
-        rays.push_back(Ray(o, d));
-    }
+    Scene scene = SmallTriangles(rng);
+    std::vector<Ray> rays = RaysWithNaNAndInfinity(rng, 200);
     FastBVHAccel sah(scene.prims, 8, SplitMethod::SAH);
     FastBVHAccel middle(scene.prims, 4, SplitMethod::Middle);
     FastBVHAccel equal(scene.prims, 2, SplitMethod::EqualCounts);
-    for (const Ray &ray : rays) {
-        Ray r[3] = {ray, ray, ray};
-        SurfaceInteraction si[3];
-        bool h[3] = {sah.Intersect(r[0], &si[0]),
-                     middle.Intersect(r[1], &si[1]),
-                     equal.Intersect(r[2], &si[2])};
-        bool p[3] = {sah.IntersectP(ray), middle.IntersectP(ray),
-                     equal.IntersectP(ray)};
-        for (int k = 1; k < 3; ++k) {
-            EXPECT_EQ(h[0], h[k]) << ray;
-            EXPECT_EQ(p[0], p[k]) << ray;
-            if (h[0] && h[k]) {
-                EXPECT_TRUE(r[0].tMax == r[k].tMax ||
-                            (std::isnan(r[0].tMax) && std::isnan(r[k].tMax)))
-                    << ray;
-            }
-        }
-    }
+    ExpectSameAnswers({&sah, &middle, &equal}, rays);
 }
 
 // FastBVHAccel traverses with one instance of its loop per octant of the
@@ -471,38 +318,12 @@ TEST(FastBVHAccel, RaysWithNaNAndInfinityEndAndAgreeAcrossTrees) {
 // sign the reciprocal decides), must find what brute force finds.
 TEST(FastBVHAccel, EveryOctantWithSignedZerosAgreesWithBruteForce) {
     std::mt19937_64 rng(6177);
-    const Float magnitudes[] = {0, Float(0.25), 1};
     int hitsPerOctant[8] = {};
     for (int sceneIndex = 0; sceneIndex < 20; ++sceneIndex) {
         Scene scene = RandomScene(rng);
         FastBVHAccel sah(scene.prims, 8, SplitMethod::SAH);
         FastBVHAccel middle(scene.prims, 4, SplitMethod::Middle);
-        for (int octant = 0; octant < 8; ++octant)
-            for (Float mx : magnitudes)
-                for (Float my : magnitudes)
-                    for (Float mz : magnitudes) {
-                        if (mx == 0 && my == 0 && mz == 0) continue;
-                        // Negative zero where the octant says negative.
-                        Vector3f d(octant & 1 ? -mx : mx,
-                                   octant & 2 ? -my : my,
-                                   octant & 4 ? -mz : mz);
-                        Ray ray = RandomRay(rng, scene.bounds);
-                        // Aim the ray's line near the scene's centre.
-                        Point3f c = scene.bounds.pMin * Float(0.5) +
-                                    scene.bounds.pMax * Float(0.5);
-                        double r = scene.bounds.Diagonal().Length() / 2;
-                        ray.o = RandomPoint(rng, c, 0.4 * r) -
-                                Normalize(d) * Float(U(rng, 0, 3 * r));
-                        ray.d = d;
-                        Oracle o = BruteForce(scene.prims, ray);
-                        if (!o.hits.empty()) ++hitsPerOctant[octant];
-                        for (const FastBVHAccel *a : {&sah, &middle}) {
-                            std::string e = Compare(*a, ray, o);
-                            EXPECT_TRUE(e.empty())
-                                << "octant " << octant << ", ray " << ray
-                                << ": " << e;
-                        }
-                    }
+        CheckEveryOctant(rng, scene, {&sah, &middle}, hitsPerOctant);
     }
     for (int octant = 0; octant < 8; ++octant)
         EXPECT_GT(hitsPerOctant[octant], 50) << "octant " << octant;

@@ -51,9 +51,7 @@ EXERCISE_TEST(Ex7_8_FourBoxes, RaysAlongTheFacesOfAGrid) {
     for (SplitMethod m : methods)
         for (int leafSize : {1, 3}) {
             ex::FastBVHAccel bvh(scene, leafSize, m);
-            std::map<const Primitive *, int> at;
-            for (size_t k = 0; k < bvh.Primitives().size(); ++k)
-                at[bvh.Primitives()[k].get()] = int(k);
+            std::map<const Primitive *, int> at = Positions(bvh);
             for (int r = 0; r < calls::Cases(600, 200); ++r) {
                 Point3f o(Float(rng() % 11) - 1, Float(rng() % 11) - 1,
                           Float(rng() % 11) - 1);
@@ -104,12 +102,8 @@ EXERCISE_TEST(Ex7_9_FourChildren, LargerTreesAndTies) {
     for (size_t s = 0; s < scenes.size(); ++s)
         for (SplitMethod m : methods)
             for (int leafSize : {1, 2, 5}) {
-                ex::FastBVHAccel bvh(scenes[s], leafSize, m, true);
-                CheckStructure(bvh, scenes[s].prims);
-                CheckCollapse(bvh, &count,
-                              "scene " + std::to_string(s) + ", " +
-                                  MethodName(m) + "(" +
-                                  std::to_string(leafSize) + ")");
+                CheckAdoptedTree(scenes[s], m, leafSize, &count,
+                                 "scene " + std::to_string(s));
                 if (::testing::Test::HasFailure()) return;
             }
     EXPECT_GT(count.full, count.nodes / 3);
@@ -127,12 +121,8 @@ EXERCISE_TEST(Ex7_10_BinnedSAH, MoreDecisions) {
         if (sceneIndex % 20 == 0) n = 1000 + int(rng() % 1000);
         Scene scene = RandomBoxScene(rng, n);
         int leafSize = leafSizes[rng() % 8];
-        ex::FastBVHAccel bvh(scene, leafSize, SplitMethod::SAH);
-        CheckStructure(bvh, scene.prims);
-        CheckSAHDecisions(bvh, &count,
-                          "scene " + std::to_string(sceneIndex) + ", " +
-                              std::to_string(n) + " boxes, maxPrimsInNode " +
-                              std::to_string(leafSize));
+        CheckSAHTree(scene, leafSize, &count,
+                     "scene " + std::to_string(sceneIndex));
         if (::testing::Test::HasFailure()) return;
     }
     EXPECT_GT(count.decisions, 3 * scenes);

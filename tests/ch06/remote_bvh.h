@@ -106,6 +106,14 @@ class KeptInWorker {
     KeptInWorker(calls::Handle handle,
                  const std::vector<std::shared_ptr<Primitive>> &scene, bool log)
         : handle(std::move(handle)), scene(scene), log(log) {}
+    // The test's primitive of the worker's index k in a tree's order, where
+    // every entry must name one.
+    const std::shared_ptr<Primitive> &Listed(int k) const {
+        if (k == -1)
+            throw std::runtime_error("the worker lists no primitive (-1) in "
+                                     "its tree's order");
+        return At(k);
+    }
     // The test's primitive of the worker's index k (nullptr for -1).
     const std::shared_ptr<Primitive> &At(int k) const {
         static const std::shared_ptr<Primitive> none;
@@ -137,11 +145,35 @@ class KeptInWorker {
     bool log;
 };
 
+// Counts the primitives a leaf holds, each of which must be in exactly one
+// leaf: trees whose leaves overlap would let the checks that walk them do
+// the work of every leaf for every primitive (a reply of a few megabytes
+// could make the judge check billions of pairs).
+class LeafCover {
+  public:
+    explicit LeafCover(size_t nPrimitives) : held(nPrimitives, 0) {}
+    // False if a primitive of [offset, offset + n) is already in a leaf.
+    bool Add(size_t offset, size_t n) {
+        for (size_t k = offset; k < offset + n; ++k)
+            if (held[k]++) return false;
+        return true;
+    }
+    bool Complete() const {
+        for (char h : held)
+            if (!h) return false;
+        return true;
+    }
+
+  private:
+    std::vector<char> held;
+};
+
 // Checks that the worker's nodes are a tree over its primitives, laid out as
 // BVHAccel lays it out (Section 6.3.5): every node reached once from the root,
 // a first child right after its parent and a second child after that, leaves
-// within the primitives, at most maxBVHDepth levels. Throws if not, so that
-// no check ever follows an index out of the arrays or around a cycle.
+// within the primitives and each primitive in one leaf, at most maxBVHDepth
+// levels. Throws if not, so that no check ever follows an index out of the
+// arrays or around a cycle.
 inline void CheckIsTree(const std::vector<LinearBVHNode> &nodes,
                         size_t nPrimitives) {
     auto refuse = [](int i, const std::string &why) {
@@ -149,6 +181,7 @@ inline void CheckIsTree(const std::vector<LinearBVHNode> &nodes,
                                  std::to_string(i) + " " + why);
     };
     std::vector<char> reached(nodes.size(), 0);
+    LeafCover cover(nPrimitives);
     std::vector<std::pair<int, int>> pending;  // node, depth
     if (!nodes.empty()) pending.push_back({0, 0});
     while (!pending.empty()) {
@@ -161,6 +194,8 @@ inline void CheckIsTree(const std::vector<LinearBVHNode> &nodes,
             if (n.primitivesOffset < 0 ||
                 size_t(n.primitivesOffset) + n.nPrimitives > nPrimitives)
                 refuse(i, "has primitives outside the array");
+            if (!cover.Add(size_t(n.primitivesOffset), size_t(n.nPrimitives)))
+                refuse(i, "holds a primitive that another leaf holds");
             continue;
         }
         if (n.axis > 2)
@@ -173,6 +208,9 @@ inline void CheckIsTree(const std::vector<LinearBVHNode> &nodes,
     }
     for (size_t i = 0; i < nodes.size(); ++i)
         if (!reached[i]) refuse(int(i), "is not reached from the root");
+    if (!cover.Complete())
+        throw std::runtime_error("the worker's BVH is not a tree: a primitive "
+                                 "is in no leaf");
 }
 
 // The worker's BVHAccel over a scene, with lrt::BVHAccel's interface:
@@ -187,7 +225,7 @@ class BVHAccel : public Primitive {
                              KeepsNotes(scene))),
           kept(std::make_shared<KeptInWorker>(built.handle, scene.prims,
                                               KeepsNotes(scene))) {
-        for (int k : built.order) primitives.push_back(kept->At(k));
+        for (int k : built.order) primitives.push_back(kept->Listed(k));
         CheckIsTree(built.nodes, primitives.size());
     }
     Bounds3f WorldBound() const override { return built.worldBound; }

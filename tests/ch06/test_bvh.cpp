@@ -335,8 +335,15 @@ TEST(ExerciseCalls, AnswersThatAreNotATreeAreRefused) {
     refused("a leaf before the primitives",
             [&](auto &n) { n[leaf].primitivesOffset = -1; });
     refused("leaves with no primitives", [](auto &) {}, 0);
-    // A chain of interior nodes, each with a leaf as its first child: as
-    // deep as BVHAccel's traversal stack allows, and one deeper.
+    int otherLeaf = leaf + 1;
+    while (tree[otherLeaf].nPrimitives == 0) ++otherLeaf;
+    refused("two leaves that hold the same primitive", [&](auto &n) {
+        n[otherLeaf].primitivesOffset = n[leaf].primitivesOffset;
+    });
+    refused("a primitive in no leaf", [](auto &) {}, 9);
+    // A chain of interior nodes, each with a leaf of one primitive of its
+    // own as its first child: as deep as BVHAccel's traversal stack allows,
+    // and one deeper.
     for (int depth : {maxBVHDepth, maxBVHDepth + 1}) {
         std::vector<LinearBVHNode> chain(2 * depth + 1, tree[leaf]);
         for (int d = 0; d < depth; ++d) {
@@ -344,14 +351,22 @@ TEST(ExerciseCalls, AnswersThatAreNotATreeAreRefused) {
             chain[2 * d].secondChildOffset = 2 * d + 2;
             chain[2 * d].axis = 0;
         }
+        for (int d = 0; d <= depth; ++d) {
+            chain[std::min(2 * d + 1, 2 * depth)].primitivesOffset = d;
+            chain[std::min(2 * d + 1, 2 * depth)].nPrimitives = 1;
+        }
         if (depth <= maxBVHDepth)
-            EXPECT_NO_THROW(ex::CheckIsTree(chain, 8));
+            EXPECT_NO_THROW(ex::CheckIsTree(chain, size_t(depth) + 1));
         else
-            EXPECT_THROW(ex::CheckIsTree(chain, 8), std::runtime_error);
+            EXPECT_THROW(ex::CheckIsTree(chain, size_t(depth) + 1),
+                         std::runtime_error);
     }
-    // Indices of primitives: -1 names none; others must be in the scene.
+    // Indices of primitives: -1 names none, but not in a tree's order;
+    // others must be in the scene.
     ex::KeptInWorker kept(calls::Handle(), scene.prims, false);
     EXPECT_EQ(kept.At(-1), nullptr);
+    EXPECT_THROW(kept.Listed(-1), std::runtime_error);
+    EXPECT_EQ(kept.Listed(7), scene.prims[7]);
     EXPECT_EQ(kept.At(7), scene.prims[7]);
     EXPECT_THROW(kept.At(8), std::runtime_error);
     EXPECT_THROW(kept.At(-2), std::runtime_error);

@@ -23,8 +23,10 @@ namespace ex {
 
 // Checks that the worker's four-wide nodes form a tree under `root`: every
 // node reached once, at most maxBVHDepth levels, leaves within the
-// primitives. Throws if not, so that no check ever follows an index out of
-// the arrays or around a cycle.
+// primitives and each primitive in one leaf (LeafCover, ch06/remote_bvh.h),
+// and an empty leaf as the root of a tree of no primitives. Throws if not,
+// so that no check ever follows an index out of the arrays or around a
+// cycle, or walks overlapping leaves.
 inline void CheckIsWideTree(const std::vector<FastBVHNode> &nodes,
                             FastBVHChild root, size_t nPrimitives) {
     auto refuse = [](const std::string &why) {
@@ -32,8 +34,11 @@ inline void CheckIsWideTree(const std::vector<FastBVHNode> &nodes,
                                  why);
     };
     std::vector<char> reached(nodes.size(), 0);
+    LeafCover cover(nPrimitives);
     std::vector<std::pair<FastBVHChild, int>> pending;  // child, depth
-    if (nPrimitives > 0) pending.push_back({root, 0});
+    if (nPrimitives == 0 && !(root.IsLeaf() && root.NPrimitives() == 0))
+        refuse("a tree of no primitives has a root that is not an empty leaf");
+    pending.push_back({root, 0});
     while (!pending.empty()) {
         auto [c, depth] = pending.back();
         pending.pop_back();
@@ -41,6 +46,8 @@ inline void CheckIsWideTree(const std::vector<FastBVHNode> &nodes,
         if (c.IsLeaf()) {
             if (size_t(c.offset) + c.NPrimitives() > nPrimitives)
                 refuse("a leaf holds primitives outside the array");
+            if (!cover.Add(c.offset, size_t(c.NPrimitives())))
+                refuse("two leaves hold the same primitive");
             continue;
         }
         if (c.offset >= nodes.size())
@@ -55,6 +62,7 @@ inline void CheckIsWideTree(const std::vector<FastBVHNode> &nodes,
         if (!reached[i])
             refuse("node " + std::to_string(i) +
                    " is not reached from the root");
+    if (!cover.Complete()) refuse("a primitive is in no leaf");
 }
 
 // The worker's FastBVHAccel over a scene, with lrt::FastBVHAccel's
@@ -72,9 +80,9 @@ class FastBVHAccel : public Primitive {
                                  adopt, KeepsNotes(scene))),
           log(KeepsNotes(scene)),
           kept(std::make_shared<KeptInWorker>(built.handle, scene.prims, log)) {
-        for (int k : built.order) primitives.push_back(kept->At(k));
+        for (int k : built.order) primitives.push_back(kept->Listed(k));
         for (int k : built.adoptedOrder)
-            adoptedPrimitives.push_back(kept->At(k));
+            adoptedPrimitives.push_back(kept->Listed(k));
         CheckIsWideTree(built.nodes, built.root, primitives.size());
         if (built.triangles.size() != primitives.size())
             throw std::runtime_error("the worker's FastBVHAccel has " +

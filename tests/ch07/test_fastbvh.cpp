@@ -1,8 +1,8 @@
 // Tests of chapter 7's FastBVHAccel that reach no graded exercise's code,
 // so that they pass in the student edition too: accelerators over no
 // primitives, the checks of the constructor's arguments, the box test's
-// mask (EnteredChildren(), against its definition, NaNs included), and the
-// large arrays.
+// mask (EnteredChildren(), against its definition, NaNs included), the
+// large arrays, and the refusal of a worker's answer that is not a tree.
 //
 // The graded exercises (the box test, the collapse into four-wide nodes and
 // the sweep of the binned SAH) are in every tree of more than one leaf and
@@ -14,6 +14,7 @@
 // edition, chapter 7's code is the book's.
 
 #include "ch06/bvh_scenes.h"
+#include "ch07/remote_fastbvh.h"
 #include "lrt/accelerators/fastbvh.h"
 
 #include <gtest/gtest.h>
@@ -144,4 +145,28 @@ TEST(LargeArray, AlignmentAndGrowthAcrossTheThreshold) {
     tris.shrink_to_fit();
     EXPECT_EQ(tris[9].c[0][0], Float(9));
     EXPECT_EQ(address(tris.data()) % alignof(FastTriangle), 0u);
+}
+
+// A worker's four-wide tree must be a tree whose leaves hold each primitive
+// once (remote_fastbvh.h): leaves that overlap would let the checks that
+// walk the tree do the work of every leaf for every primitive, and a tree of
+// no primitives must have an empty leaf as its root, which no check follows.
+// Made by hand, since building one runs the exercises' code.
+TEST(ExerciseCalls, WideAnswersThatAreNotATreeAreRefused) {
+    const FastBVHChild interior = {0, fastBVHInterior, 0}, empty = {0, 0, 0};
+    std::vector<FastBVHNode> nodes(1);
+    for (int c = 0; c < fastBVHWidth; ++c)
+        nodes[0].child[c] = {uint32_t(c), 1, 0};
+    EXPECT_NO_THROW(ex::CheckIsWideTree(nodes, interior, 4));
+    EXPECT_NO_THROW(ex::CheckIsWideTree({}, empty, 0));
+    std::vector<FastBVHNode> overlapping = nodes;
+    overlapping[0].child[1].offset = 0;
+    EXPECT_THROW(ex::CheckIsWideTree(overlapping, interior, 4), std::runtime_error);
+    std::vector<FastBVHNode> wholeLeaves = nodes;
+    for (int c = 0; c < fastBVHWidth; ++c)
+        wholeLeaves[0].child[c] = {0, 4, 0};
+    EXPECT_THROW(ex::CheckIsWideTree(wholeLeaves, interior, 4), std::runtime_error);
+    EXPECT_THROW(ex::CheckIsWideTree(nodes, interior, 5), std::runtime_error);
+    EXPECT_THROW(ex::CheckIsWideTree({}, interior, 0), std::runtime_error);
+    EXPECT_THROW(ex::CheckIsWideTree(nodes, interior, 0), std::runtime_error);
 }

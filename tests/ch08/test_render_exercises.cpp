@@ -92,6 +92,7 @@ EXERCISE_TEST(Ex8_9_SRGB, GrowsWithTheLightAndIsContinuous) {
         values.push_back(Float(std::pow(10.0, -6 + 6.0 * i / 4000)));
     auto got = ex::EncodeSRGB(values);
     ASSERT_EQ(got.encoded.size(), values.size());
+    ASSERT_EQ(got.bytes.size(), values.size());
     for (size_t i = 1; i < values.size(); ++i) {
         EXPECT_GE(got.encoded[i], got.encoded[i - 1]) << values[i];
         EXPECT_GE(got.bytes[i], got.bytes[i - 1]) << values[i];
@@ -100,6 +101,7 @@ EXERCISE_TEST(Ex8_9_SRGB, GrowsWithTheLightAndIsContinuous) {
     // than rounding.
     Float th = Float(0.0031308);
     auto at = ex::EncodeSRGB(std::vector<Float>{th, std::nextafter(th, Float(1))});
+    ASSERT_EQ(at.encoded.size(), 2u);
     EXPECT_NEAR(at.encoded[0], at.encoded[1], 1e-6);
     EXPECT_NEAR(at.encoded[0], 0.0404500, 1e-6);
 }

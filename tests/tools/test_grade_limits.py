@@ -25,7 +25,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))
 import test_grade as tg  # noqa: E402
 from tools.exercises import markup  # noqa: E402
-from tools.grading import build as grade_build, records, submission  # noqa: E402
+from tools.grading import build as grade_build, judging, records, sandbox, submission  # noqa: E402
 from tools.grading.report import Report, Result  # noqa: E402
 
 # ex-5.10's region, after the book's solution lines.
@@ -61,6 +61,63 @@ def stub_message(exercise, fragment):
     finally:
         os.chdir(cwd)
     return markup.stub_message([e for e in book.exercises if e.id == exercise][0], fragment)
+
+
+class JudgeLimitTest(unittest.TestCase):
+    """The judge runs with an address-space limit of its own (a reply shaped to
+    fail millions of checks grows it, and the machine is shared), and with
+    the standard library's bounds checks, so that a test indexing past a short
+    reply aborts it instead of reading its memory into a failure message."""
+
+    def limit_seen_by(self, preexec):
+        r = subprocess.run([sys.executable, '-c', 'import resource; '
+                            'print(resource.getrlimit(resource.RLIMIT_AS)[0])'],
+                           preexec_fn=preexec, capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return int(r.stdout)
+
+    def test_the_judge_process_has_its_memory_limit(self):
+        self.assertEqual(self.limit_seen_by(sandbox.judge_process(96)), 96 << 20)
+
+    def test_a_limit_of_zero_is_none(self):
+        self.assertEqual(self.limit_seen_by(sandbox.judge_process(0)),
+                         self.limit_seen_by(None))
+
+    def test_the_judge_is_started_with_the_limit_of_its_option(self):
+        seen = {}
+
+        class Stop(Exception):
+            pass
+
+        def popen(cmd, **kwargs):
+            seen['preexec'] = kwargs.get('preexec_fn')
+            raise Stop()
+        args = type('Args', (), {'judge_memory_limit': 80, 'time_limit': 10,
+                                 'exercise_time_limit': 900})()
+        real = judging.subprocess.Popen
+        judging.subprocess.Popen = popen
+        try:
+            with tempfile.TemporaryDirectory() as tmp:
+                with self.assertRaises(Stop):
+                    judging.judge_tests(args, 'judge', 'argv', 'secret',
+                                        os.path.join(tmp, 'run'), [], time.monotonic() + 60)
+        finally:
+            judging.subprocess.Popen = real
+        self.assertEqual(self.limit_seen_by(seen['preexec']), 80 << 20)
+
+    def test_the_judge_is_built_with_bounds_checks(self):
+        self.assertIn('-D_GLIBCXX_ASSERTIONS', grade_build.JUDGE_CXXFLAGS)
+        # and they work in a program built with those flags: an index past
+        # the end of a vector aborts
+        with tempfile.TemporaryDirectory() as tmp:
+            src = os.path.join(tmp, 'past.cpp')
+            with open(src, 'w') as f:
+                f.write('#include <vector>\nint main(int argc, char **) {\n'
+                        '    std::vector<int> v(1);\n    return v[argc + 3];\n}\n')
+            subprocess.run(['g++'] + grade_build.JUDGE_CXXFLAGS + [src, '-o', src + '.bin'],
+                           check=True)
+            r = subprocess.run([src + '.bin'], capture_output=True)
+        self.assertEqual(r.returncode, -6)
 
 
 class CacheKeyTest(unittest.TestCase):

@@ -62,8 +62,11 @@ SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all
 # The grader (docs/grading.md). Its judge is the book's code with the public
 # and hidden tests, never a student's line, built once per chapter: at -O2 as
 # the book's build, and without warnings (-w), which are the book's build's
-# business (it makes them errors), not a grade's.
-JUDGE_CXXFLAGS := $(CXX_STD) $(BOOK_OPT) $(FP_FLAGS) -w
+# business (it makes them errors), not a grade's. The tests index what a
+# worker answered: -D_GLIBCXX_ASSERTIONS makes an index past a reply's end an
+# abort of the judge (the exercise's tests fail) instead of a read of the
+# judge's own memory that a failure message would show the student.
+JUDGE_CXXFLAGS := $(CXX_STD) $(BOOK_OPT) $(FP_FLAGS) -w -D_GLIBCXX_ASSERTIONS
 
 # A worker is a student's code, built for each exercise of each submission:
 # at -O0, which compiles fastest, with the warnings shown to the student

@@ -229,6 +229,7 @@ def grade_batch(args):
     # cases.
     forwarded = ['--root', args.root, '--cache', args.cache, '--time-limit',
                  str(args.time_limit), '--memory-limit', str(args.memory_limit),
+                 '--judge-memory-limit', str(args.judge_memory_limit),
                  '--cpu-limit', str(args.cpu_limit),
                  '--exercise-time-limit', str(args.exercise_time_limit),
                  '@' + private_flags(['--seed', str(args.secret)]),

@@ -313,6 +313,9 @@ def main(argv=None):
                         'user can isolate the student\'s code')
     parser.add_argument('--memory-limit', type=int, default=1024,
                         help='MB of address space per test (0: none)')
+    parser.add_argument('--judge-memory-limit', type=int, default=4096,
+                        help='MB of address space of the judge, which keeps the workers\' '
+                        'answers and the failures found in them (0: none)')
     parser.add_argument('--compile-time-limit', type=int, default=900,
                         help='seconds to build the code of one exercise')
     parser.add_argument('--submission-time-limit', type=int, default=3600,

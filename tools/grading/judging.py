@@ -123,7 +123,7 @@ def judge_tests(args, judge, argv_file, secret_file, base, results, deadline):
     if left > 0:
         judge_run = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                                      stderr=subprocess.PIPE, start_new_session=True,
-                                     preexec_fn=sandbox.die_with_parent)
+                                     preexec_fn=sandbox.judge_process(args.judge_memory_limit))
         try:
             judge_run.communicate(timeout=left)
             ended = None if judge_run.returncode in (0, 1) else \

@@ -33,6 +33,7 @@ import ctypes
 import fcntl
 import functools
 import os
+import resource
 import shutil
 import signal
 import stat
@@ -161,6 +162,22 @@ def adopt_orphans():
     libc = ctypes.CDLL(None, use_errno=True)
     if libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) != 0:
         raise OSError(ctypes.get_errno(), 'prctl(PR_SET_CHILD_SUBREAPER)')
+
+
+def judge_process(memory_mb):
+    """Popen's preexec_fn for a judge: it dies with its grader
+    (die_with_parent) and may not take more than `memory_mb` of address
+    space. The judge runs no student code, but it keeps what the workers
+    answer and every failure it finds in it: a reply shaped to make the tests
+    fail a million times would otherwise grow it until the machine, and the
+    other submissions graded on it, ran out of memory. Its workers set their
+    own, smaller limit."""
+    def limit():
+        die_with_parent()
+        if memory_mb:
+            size = memory_mb << 20
+            resource.setrlimit(resource.RLIMIT_AS, (size, size))
+    return limit
 
 
 def die_with_parent():

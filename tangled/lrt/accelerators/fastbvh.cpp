@@ -491,18 +491,18 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
             Float t1[fastBVHWidth];
         #if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
             // Test the four boxes in the lanes of SSE2 registers
-            __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearX), ox), ix);
-            __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farX), ox), ix);
-            __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearY), oy), iy);
-            __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farY), oy), iy);
-            __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearZ), oz), iz);
-            __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farZ), oz), iz);
+            auto tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearX), ox), ix);
+            auto tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farX), ox), ix);
+            auto ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearY), oy), iy);
+            auto ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farY), oy), iy);
+            auto tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearZ), oz), iz);
+            auto tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farZ), oz), iz);
             // _mm_max_ps(x, m) is std::max(m, x) in every lane, NaNs included, and
             // _mm_min_ps(x, m) is std::min(m, x): the operand order matters
-            __m128 tNear = _mm_max_ps(tx0, _mm_setzero_ps());
+            auto tNear = _mm_max_ps(tx0, _mm_setzero_ps());
             tNear = _mm_max_ps(ty0, tNear);
             tNear = _mm_max_ps(tz0, tNear);
-            __m128 tFar = _mm_min_ps(tx1, tMaxLanes);
+            auto tFar = _mm_min_ps(tx1, tMaxLanes);
             tFar = _mm_min_ps(ty1, tFar);
             tFar = _mm_min_ps(tz1, tFar);
             _mm_storeu_ps(t, tNear);
@@ -540,18 +540,18 @@ static void TraverseFastBVHOctant(const FastBVHNode *nodes,
                 Float t1[fastBVHWidth];
             #if defined(__SSE2__) && !defined(LRT_FLOAT_AS_DOUBLE)
                 // Test the four boxes in the lanes of SSE2 registers
-                __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearX), ox), ix);
-                __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farX), ox), ix);
-                __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearY), oy), iy);
-                __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farY), oy), iy);
-                __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearZ), oz), iz);
-                __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farZ), oz), iz);
+                auto tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearX), ox), ix);
+                auto tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farX), ox), ix);
+                auto ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearY), oy), iy);
+                auto ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farY), oy), iy);
+                auto tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + nearZ), oz), iz);
+                auto tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + farZ), oz), iz);
                 // _mm_max_ps(x, m) is std::max(m, x) in every lane, NaNs included, and
                 // _mm_min_ps(x, m) is std::min(m, x): the operand order matters
-                __m128 tNear = _mm_max_ps(tx0, _mm_setzero_ps());
+                auto tNear = _mm_max_ps(tx0, _mm_setzero_ps());
                 tNear = _mm_max_ps(ty0, tNear);
                 tNear = _mm_max_ps(tz0, tNear);
-                __m128 tFar = _mm_min_ps(tx1, tMaxLanes);
+                auto tFar = _mm_min_ps(tx1, tMaxLanes);
                 tFar = _mm_min_ps(ty1, tFar);
                 tFar = _mm_min_ps(tz1, tFar);
                 _mm_storeu_ps(t, tNear);

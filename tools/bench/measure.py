@@ -154,23 +154,35 @@ def callgrind_totals(path):
     return dict(zip(events, totals))
 
 
-def counts(bench, data, tmp):
-    mesh = os.path.join(data, 'bunny_L2.ply')
+def callgrind(program, data, rays, version, out, simulate=False):
+    """callgrind's totals in the tracing loop (TracePass) of `version` on L2
+    with the SAH tree, for the rays of the file `rays`; with `simulate`, of
+    the branch predictor and the last-level cache too."""
+    # Valgrind 3.19 gives up on the DWARF 5 that Clang 14 writes; it needs
+    # only the symbols, so it runs a copy without the debugging information.
+    plain = out + '.program'
+    run(['objcopy', '--strip-debug', program, plain], 'objcopy --strip-debug ' + program)
+    simulation = ['--branch-sim=yes', '--cache-sim=yes', '--LL=' + LL_CACHE] if simulate else []
+    run(['valgrind', '--tool=callgrind', '--toggle-collect=*TracePass*'] + simulation +
+        ['--callgrind-out-file=' + out, plain, '--mesh', os.path.join(data, 'bunny_L2.ply'),
+         '--rays', rays, '--methods', 'sah', '--passes', '1', '--builds', '1',
+         '--benchmark_filter=' + FILTERS[version]],
+        'callgrind, %s, %s version, %s' % (program, version, os.path.basename(rays)))
+    totals = callgrind_totals(out)
+    if not totals.get('Ir'):
+        fail('callgrind counted no instructions in the %s version\'s tracing of %s '
+             'by %s (did the benchmark skip it?)' % (version, rays, program))
+    return totals
+
+
+def counts(bench, data, sample, tmp):
     result = {'mesh': 'bunny_L2', 'method': 'SAH', 'rays': SAMPLE_RAYS,
               'camera_rows': list(SAMPLE_ROWS), 'cache': LL_CACHE}
-    for name, rays in samples(data, tmp).items():
+    for name, rays in sample.items():
         for version in VERSIONS:
-            out = os.path.join(tmp, 'callgrind.%s.%s' % (name, version))
-            run(['valgrind', '--tool=callgrind', '--toggle-collect=*TracePass*',
-                 '--branch-sim=yes', '--cache-sim=yes', '--LL=' + LL_CACHE,
-                 '--callgrind-out-file=' + out, bench, '--mesh', mesh, '--rays', rays,
-                 '--methods', 'sah', '--passes', '1', '--builds', '1',
-                 '--benchmark_filter=' + FILTERS[version]],
-                'callgrind, %s rays, %s version' % (name, version))
-            totals = callgrind_totals(out)
-            if not totals.get('Ir'):
-                fail('callgrind counted no instructions in the %s version\'s tracing '
-                     'of the %s rays (did the benchmark skip it?)' % (version, name))
+            totals = callgrind(bench, data, rays, version,
+                               os.path.join(tmp, 'callgrind.%s.%s' % (name, version)),
+                               simulate=True)
             result.setdefault(name, {})[version] = {
                 what: sum(totals.get(e, 0) for e in events) / SAMPLE_RAYS
                 for what, events in COUNTS.items()}
@@ -189,23 +201,7 @@ def make(*args):
     return r.stdout
 
 
-def instructions_per_ray(program, data, rays, version, out):
-    # Valgrind 3.19 gives up on the DWARF 5 that Clang 14 writes; it needs
-    # only the symbols, so it runs a copy without the debugging information.
-    plain = out + '.program'
-    run(['objcopy', '--strip-debug', program, plain], 'objcopy --strip-debug ' + program)
-    run(['valgrind', '--tool=callgrind', '--toggle-collect=*TracePass*',
-         '--callgrind-out-file=' + out, plain, '--mesh', os.path.join(data, 'bunny_L2.ply'),
-         '--rays', rays, '--methods', 'sah', '--passes', '1', '--builds', '1',
-         '--benchmark_filter=' + FILTERS[version]],
-        'callgrind, %s, %s version' % (os.path.basename(program), version))
-    instructions = callgrind_totals(out).get('Ir', 0)
-    if not instructions:
-        fail('callgrind counted no instructions of %s' % program)
-    return instructions / SAMPLE_RAYS
-
-
-def compilers(data, tmp):
+def compilers(data, sample, tmp):
     programs = []
     for cxx, flags, name in CONFIGURATIONS:
         config = ['BENCH_CXX=' + cxx, 'BENCH_CXXFLAGS=' + flags]
@@ -225,7 +221,6 @@ def compilers(data, tmp):
                 part = json.load(f)
             check_hits(part['results'])
             runs[name].append(part)
-    sample = samples(data, tmp)
     result = []
     for cxx, flags, name, program in programs:
         entry = {'name': name, 'cxx': cxx, 'cxxflags': flags,
@@ -244,8 +239,8 @@ def compilers(data, tmp):
             entry['meshes'][mesh] = m
         if '-march=native' not in flags:
             entry['instructions'] = {
-                rays: instructions_per_ray(program, data, sample[rays], 'final',
-                                           os.path.join(tmp, 'cg.%s.%s' % (name, rays)))
+                rays: callgrind(program, data, sample[rays], 'final',
+                                os.path.join(tmp, 'cg.%s.%s' % (name, rays)))['Ir'] / SAMPLE_RAYS
                 for rays in ('camera', 'incoherent')}
         result.append(entry)
     return result
@@ -270,8 +265,9 @@ def main():
                  'writes it)' % (args.data, level))
     with tempfile.TemporaryDirectory() as tmp:
         setup, results = speeds(args.bench, args.data, tmp, args.passes, args.builds)
-        measured = counts(args.bench, args.data, tmp)
-        configurations = compilers(args.data, tmp)
+        sample = samples(args.data, tmp)
+        measured = counts(args.bench, args.data, sample, tmp)
+        configurations = compilers(args.data, sample, tmp)
     setup['processor'] = processor()
     setup['rays'] = {name: os.path.getsize(os.path.join(args.data, name)) // RAY_BYTES
                      for name in ('rays_primary.bin', 'rays_incoherent.bin')}

@@ -217,7 +217,8 @@ def main(argv):
         if named and not os.path.exists(argv[1]):
             chapter, line, name = named[0]
             sys.exit('%s:%d: names the measured number %r, but there is no %s'
-                     % (chapter, line, name, argv[1]))
+                     % (chapter, line, name, argv[1] or 'measurements file named in '
+                        'the book\'s metadata (measurements:)'))
         errors = check(load(argv[1]), argv[2:]) if named else []
         if errors:
             sys.exit('\n'.join(errors))

@@ -30,7 +30,6 @@ FIGURES_BIN := $(FIGURES_DIR)/render/figures
 FIGURES_CXXFLAGS := $(BOOK_CXXFLAGS)
 FIGURES_ASOF := $(ASOF) ASOF=$(LAST) FLOAT= SANITIZE=
 BENCH_LEVELS_DATA := $(BUILD)/bench-levels
-BENCH_LEVELS_JSON := figures/data/bvh-measurements.json
 
 .PHONY: figures figures-build check-figures book-measurements
 
@@ -47,17 +46,17 @@ BENCH_TABLE := figures/bvh-bench.dat
 
 figures: figures-build
 	$(FIGURES_BIN) --out figures
-	python3 tools/bench/table.py $(BENCH_LEVELS_JSON) > $(BENCH_TABLE)
+	python3 tools/bench/table.py $(MEASUREMENTS) > $(BENCH_TABLE)
 
 check-figures: figures-build
 	$(FIGURES_BIN) --check figures
-	@python3 tools/bench/table.py $(BENCH_LEVELS_JSON) | cmp -s - $(BENCH_TABLE) || \
+	@python3 tools/bench/table.py $(MEASUREMENTS) | cmp -s - $(BENCH_TABLE) || \
 	    { echo "check-figures: $(BENCH_TABLE) is not the table of" \
-	           "$(BENCH_LEVELS_JSON); run make figures and commit it" >&2; exit 1; }
-	@echo "$(BENCH_TABLE)      ok: the table of $(BENCH_LEVELS_JSON)"
+	           "$(MEASUREMENTS); run make figures and commit it" >&2; exit 1; }
+	@echo "$(BENCH_TABLE)      ok: the table of $(MEASUREMENTS)"
 
 book-measurements: bench-build
 	python3 $(BENCH_GENERATOR) --out $(BENCH_LEVELS_DATA) --levels 0,1,2,3,4
 	python3 tools/bench/measure.py --bench $(BENCH_BIN) --data $(BENCH_LEVELS_DATA) \
-	    --out $(BENCH_LEVELS_JSON)
-	python3 tools/bench/table.py $(BENCH_LEVELS_JSON) > $(BENCH_TABLE)
+	    --out $(MEASUREMENTS)
+	python3 tools/bench/table.py $(MEASUREMENTS) > $(BENCH_TABLE)

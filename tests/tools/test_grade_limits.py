@@ -76,21 +76,16 @@ class JudgeLimitTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         return int(r.stdout)
 
-    def test_the_judge_process_has_its_memory_limit(self):
-        self.assertEqual(self.limit_seen_by(sandbox.judge_process(96)), 96 << 20)
-
-    def test_a_limit_of_zero_is_none(self):
-        self.assertEqual(self.limit_seen_by(sandbox.judge_process(0)),
-                         self.limit_seen_by(None))
-
-    def test_the_judge_is_started_with_the_limit_of_its_option(self):
+    def judge_started(self):
+        """The keyword arguments with which judge_tests() starts a judge
+        (with --judge-memory-limit 80)."""
         seen = {}
 
         class Stop(Exception):
             pass
 
         def popen(cmd, **kwargs):
-            seen['preexec'] = kwargs.get('preexec_fn')
+            seen.update(kwargs)
             raise Stop()
         args = type('Args', (), {'judge_memory_limit': 80, 'time_limit': 10,
                                  'exercise_time_limit': 900})()
@@ -103,7 +98,25 @@ class JudgeLimitTest(unittest.TestCase):
                                         os.path.join(tmp, 'run'), [], time.monotonic() + 60)
         finally:
             judging.subprocess.Popen = real
+        return seen
+
+    def test_the_judge_process_has_its_memory_limit(self):
+        self.assertEqual(self.limit_seen_by(sandbox.judge_process(96)), 96 << 20)
+
+    def test_a_limit_of_zero_is_none(self):
+        self.assertEqual(self.limit_seen_by(sandbox.judge_process(0)),
+                         self.limit_seen_by(None))
+
+    def test_the_judge_is_started_with_the_limit_of_its_option(self):
+        seen = {'preexec': self.judge_started()['preexec_fn']}
         self.assertEqual(self.limit_seen_by(seen['preexec']), 80 << 20)
+
+    def test_what_the_judge_prints_is_not_kept(self):
+        # A worker can make the judge print millions of failed checks; the
+        # grader, which has no memory limit, must not hold them.
+        seen = self.judge_started()
+        self.assertIs(seen['stdout'], subprocess.DEVNULL)
+        self.assertIs(seen['stderr'], subprocess.DEVNULL)
 
     def test_the_judge_is_built_with_bounds_checks(self):
         self.assertIn('-D_GLIBCXX_ASSERTIONS', grade_build.JUDGE_CXXFLAGS)

@@ -121,8 +121,11 @@ def judge_tests(args, judge, argv_file, secret_file, base, results, deadline):
     ended = 'the exercise took longer than %d s in all' % args.exercise_time_limit
     left = deadline - time.monotonic()
     if left > 0:
-        judge_run = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                                     stderr=subprocess.PIPE, start_new_session=True,
+        # The judge's verdicts are in its report; what it prints (GoogleTest
+        # prints every failed check, and a worker can make millions) is not
+        # read, and held in a pipe it would grow the grader without limit.
+        judge_run = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                     stderr=subprocess.DEVNULL, start_new_session=True,
                                      preexec_fn=sandbox.judge_process(args.judge_memory_limit))
         try:
             judge_run.communicate(timeout=left)

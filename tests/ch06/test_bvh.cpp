@@ -185,11 +185,11 @@ TEST(BVHRandomScenes, EqualCounts) {
 // cones, paraboloids and hyperboloids, partial and cut, under random
 // transformations, with rays from inside them.
 TEST(BVHRandomScenesOfAllShapes, Middle) {
-    RunRandomScenes(Plain({SplitMethod::Middle}), 623, kRandomScenes / 2,
+    RunRandomScenes(Plain({SplitMethod::Middle}), 623, kRandomScenes,
                     Shapes::All);
 }
 TEST(BVHRandomScenesOfAllShapes, EqualCounts) {
-    RunRandomScenes(Plain({SplitMethod::EqualCounts}), 624, kRandomScenes / 2,
+    RunRandomScenes(Plain({SplitMethod::EqualCounts}), 624, kRandomScenes,
                     Shapes::All);
 }
 
@@ -392,7 +392,7 @@ EXERCISE_TEST(Ex6_5_SAH, RandomScenes) {
 }
 
 EXERCISE_TEST(Ex6_5_SAH, RandomScenesOfAllShapes) {
-    RunRandomScenes(SAHSet, 621, kExerciseRandomScenes / 2, Shapes::All);
+    RunRandomScenes(SAHSet, 621, kExerciseRandomScenes, Shapes::All);
 }
 
 EXERCISE_TEST(Ex6_5_SAH, DegenerateScenes) {
@@ -532,7 +532,7 @@ EXERCISE_TEST(Ex6_6_HLBVH, RandomScenes) {
 }
 
 EXERCISE_TEST(Ex6_6_HLBVH, RandomScenesOfAllShapes) {
-    RunRandomScenes(HLBVHSet, 622, kExerciseRandomScenes / 2, Shapes::All);
+    RunRandomScenes(HLBVHSet, 622, kExerciseRandomScenes, Shapes::All);
 }
 
 EXERCISE_TEST(Ex6_6_HLBVH, DegenerateScenes) {
@@ -579,7 +579,7 @@ EXERCISE_TEST(Ex6_7_Traversal, RandomScenes) {
 }
 
 EXERCISE_TEST(Ex6_7_Traversal, RandomScenesOfAllShapes) {
-    RunRandomScenes(TraversalSet, 625, kExerciseRandomScenes / 2, Shapes::All);
+    RunRandomScenes(TraversalSet, 625, kExerciseRandomScenes, Shapes::All);
 }
 
 EXERCISE_TEST(Ex6_7_Traversal, DegenerateScenes) {

@@ -89,7 +89,7 @@ EXERCISE_TEST(Ex7_8_FourBoxes, RandomScenes) {
 EXERCISE_TEST(Ex7_8_FourBoxes, RandomScenesOfAllShapes) {
     RunRandomScenes(
         Fast({SplitMethod::Middle, SplitMethod::EqualCounts}, false), 723,
-        kExerciseRandomScenes / 4, Shapes::All);
+        kExerciseRandomScenes / 3, Shapes::All);
 }
 
 // A ray tests a primitive exactly when it enters the boxes above its leaf:
@@ -208,7 +208,7 @@ EXERCISE_TEST(Ex7_9_FourChildren, RandomScenes) {
 
 EXERCISE_TEST(Ex7_9_FourChildren, RandomScenesOfAllShapes) {
     RunRandomScenes(Fast(kAdoptedMethods, true), 724,
-                    kExerciseRandomScenes / 4, Shapes::All);
+                    kExerciseRandomScenes / 3, Shapes::All);
 }
 
 EXERCISE_TEST(Ex7_9_FourChildren, DegenerateScenes) {
@@ -274,7 +274,7 @@ EXERCISE_TEST(Ex7_10_BinnedSAH, RandomScenes) {
 
 EXERCISE_TEST(Ex7_10_BinnedSAH, RandomScenesOfAllShapes) {
     RunRandomScenes(Fast({SplitMethod::SAH}, false), 721,
-                    kExerciseRandomScenes / 3, Shapes::All);
+                    kExerciseRandomScenes / 2, Shapes::All);
 }
 
 EXERCISE_TEST(Ex7_10_BinnedSAH, DegenerateScenes) {

@@ -108,20 +108,20 @@ TEST(FastBVHRandomScenes, EqualCounts) {
 // random transformations, with rays from inside them: FastBVHAccel and
 // BVHAccel, each with its own traversal, against brute force.
 TEST(FastBVHRandomScenesOfAllShapes, SAH) {
-    RunRandomScenes(FastAndBVH({SplitMethod::SAH}), 821, kRandomScenes / 2,
+    RunRandomScenes(FastAndBVH({SplitMethod::SAH}), 821, kRandomScenes,
                     Shapes::All);
 }
 TEST(FastBVHRandomScenesOfAllShapes, HLBVH) {
-    RunRandomScenes(FastAndBVH({SplitMethod::HLBVH}), 822, kRandomScenes / 2,
+    RunRandomScenes(FastAndBVH({SplitMethod::HLBVH}), 822, kRandomScenes,
                     Shapes::All);
 }
 TEST(FastBVHRandomScenesOfAllShapes, Middle) {
-    RunRandomScenes(FastAndBVH({SplitMethod::Middle}), 823, kRandomScenes / 2,
+    RunRandomScenes(FastAndBVH({SplitMethod::Middle}), 823, kRandomScenes,
                     Shapes::All);
 }
 TEST(FastBVHRandomScenesOfAllShapes, EqualCounts) {
     RunRandomScenes(FastAndBVH({SplitMethod::EqualCounts}), 824,
-                    kRandomScenes / 2, Shapes::All);
+                    kRandomScenes, Shapes::All);
 }
 
 TEST(FastBVHDegenerate, OnePrimitive) { CheckOnePrimitive(Fast(kAllMethods)); }

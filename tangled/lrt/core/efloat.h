@@ -151,8 +151,8 @@ class EFloat {
 // EFloat Inline Functions
 inline bool Quadratic(EFloat a, EFloat b, EFloat c, EFloat *t0, EFloat *t1) {
     // Handle the linear case of the EFloat Quadratic()
-    if ((Float)a == 0) {
-        if ((Float)b == 0) return false;
+    if (a.v == 0) {
+        if (b.v == 0) return false;
         EFloat t = -c / b;
         if (std::isnan(t.v)) return false;
         *t0 = *t1 = t;

@@ -201,8 +201,12 @@ inline Ray RandomRay(std::mt19937_64 &rng, const Bounds3f &b,
     Point3f o = rng() % 2 ? RandomPoint(rng, c, r * 0.8)
                           : RandomPoint(rng, c, r * 2);
     if (fromInsideShapes && prims && !prims->empty() && rng() % 4 == 0) {
+        // Not from a box that is flat on some axis: its middle lies in the
+        // plane of the flat triangles or disk inside it, and the distances
+        // to them are rounding error.
         Bounds3f pb = (*prims)[rng() % prims->size()]->WorldBound();
-        if (IsFiniteBox(pb)) {
+        Vector3f extent = pb.Diagonal();
+        if (IsFiniteBox(pb) && extent.x > 0 && extent.y > 0 && extent.z > 0) {
             Float f[3];
             for (Float &x : f) x = Float(U(rng, 0.3, 0.7));
             o = Point3f(Lerp(f[0], pb.pMin.x, pb.pMax.x),
@@ -263,6 +267,29 @@ inline Oracle BruteForce(const std::vector<std::shared_ptr<Primitive>> &prims,
     return o;
 }
 
+// A primitive hit at the closest distance.
+inline const Primitive *ClosestPrimitive(const Oracle &o) {
+    for (const OracleHit &h : o.hits)
+        if (h.t == o.tMin) return h.prim;
+    return nullptr;
+}
+
+// The name of the shape of a primitive (a GeometricPrimitive's), for the
+// counts of hits per shape.
+inline std::string ShapeName(const Primitive *p) {
+    auto gp = dynamic_cast<const GeometricPrimitive *>(p);
+    const Shape *s = gp ? gp->GetShape() : nullptr;
+    if (!s) return "other";
+    if (dynamic_cast<const Sphere *>(s)) return "Sphere";
+    if (dynamic_cast<const Disk *>(s)) return "Disk";
+    if (dynamic_cast<const Triangle *>(s)) return "Triangle";
+    if (dynamic_cast<const Cylinder *>(s)) return "Cylinder";
+    if (dynamic_cast<const Cone *>(s)) return "Cone";
+    if (dynamic_cast<const Paraboloid *>(s)) return "Paraboloid";
+    if (dynamic_cast<const Hyperboloid *>(s)) return "Hyperboloid";
+    return "other";
+}
+
 // Returns an empty string if the accelerator agrees with the oracle. The
 // primitive reported must report the same distance to brute force. That
 // distance must be the closest, within kTieTolerance, or, if `exact`, the
@@ -291,8 +318,9 @@ inline std::string Compare(const Primitive &accel, const Ray &ray0,
                 << h->t;
         else if (exact ? ray.tMax != o.tMin
                        : ray.tMax > o.tMin * (1 + kTieTolerance))
-            err << "t = " << ray.tMax << " but the closest hit is at "
-                << o.tMin;
+            err << "t = " << ray.tMax << " on a " << ShapeName(h->prim)
+                << " but the closest hit is at " << o.tMin << " on a "
+                << ShapeName(ClosestPrimitive(o));
     } else if (!(ray.tMax == ray0.tMax) &&
                !(std::isnan(ray.tMax) && std::isnan(ray0.tMax))) {
         err << "a miss changed tMax";
@@ -402,22 +430,6 @@ inline std::string Label(const std::string &kind, SplitMethod m, int leafSize) {
     return kind + " " + MethodName(m) + "(" + std::to_string(leafSize) + ")";
 }
 
-// The name of the shape of a primitive (a GeometricPrimitive's), for the
-// counts of hits per shape.
-inline std::string ShapeName(const Primitive *p) {
-    auto gp = dynamic_cast<const GeometricPrimitive *>(p);
-    const Shape *s = gp ? gp->GetShape() : nullptr;
-    if (!s) return "other";
-    if (dynamic_cast<const Sphere *>(s)) return "Sphere";
-    if (dynamic_cast<const Disk *>(s)) return "Disk";
-    if (dynamic_cast<const Triangle *>(s)) return "Triangle";
-    if (dynamic_cast<const Cylinder *>(s)) return "Cylinder";
-    if (dynamic_cast<const Cone *>(s)) return "Cone";
-    if (dynamic_cast<const Paraboloid *>(s)) return "Paraboloid";
-    if (dynamic_cast<const Hyperboloid *>(s)) return "Hyperboloid";
-    return "other";
-}
-
 // Builds the set's accelerators over random scenes with several leaf sizes
 // and compares each with brute force on random rays. The seed is fixed, also
 // when graded: on a few rays of some random scenes of spheres, brute force
@@ -447,11 +459,7 @@ inline void RunRandomScenes(const AccelSet &set, uint64_t seed, int nScenes,
             Oracle o = BruteForce(scene.prims, ray);
             ++rays;
             hits += !o.hits.empty();
-            for (const OracleHit &h : o.hits)
-                if (h.t == o.tMin) {
-                    ++closest[ShapeName(h.prim)];
-                    break;
-                }
+            if (!o.hits.empty()) ++closest[ShapeName(ClosestPrimitive(o))];
             for (const Accel &a : accels) {
                 std::string e = Compare(*a.accel, ray, o, all);
                 if (!e.empty() && failures++ < kMaxFailuresReported)

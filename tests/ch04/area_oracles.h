@@ -215,6 +215,19 @@ Profile<T> HyperboloidGraphProfile(T x1, T y1, T z1, T x2, T y2, T z2) {
     };
 }
 
+// The same profile parametrized along the segment, t in [0, 1]: exact for
+// bands so thin that heights between their ends are not representable.
+template <typename T>
+Profile<T> HyperboloidSegmentProfile(T x1, T y1, T z1, T x2, T y2, T z2) {
+    return [=](T t) {
+        T x = x1 + t * (x2 - x1), y = y1 + t * (y2 - y1);
+        T rho = std::sqrt(x * x + y * y);
+        return ProfilePoint<T>{rho, z1 + t * (z2 - z1),
+                               (x * (x2 - x1) + y * (y2 - y1)) / rho,
+                               z2 - z1};
+    };
+}
+
 // ---------------------------------------------------------------------------
 // Parametric surfaces
 

@@ -440,27 +440,40 @@ Integral ParaboloidByRadius(const ParaboloidParams &p) {
         area_oracles::ParaboloidRadialProfile<double>(p.radius, p.zMax()),
         rhoMin, p.radius, ToRadians(p.phiMaxDegrees));
 }
+// The hyperboloid's integrals in long double: near its waist a nearly
+// horizontal segment is nearly tangent to the circles of latitude, and the
+// area element's cross product, or the profile's slope, cancels there by
+// the ratio of the segment's height to its length (down to 1e-4 here).
+Integral ToDouble(const area_oracles::Integral<long double> &i) {
+    return {double(i.value), i.converged};
+}
 Integral HyperboloidByParametrization(const HyperboloidParams &h) {
+    using LD = long double;
     const Point3f &a = h.p1, &b = h.p2;
-    return ParametricArea(
-        area_oracles::HyperboloidSurface<double>(a.x, a.y, a.z, b.x, b.y, b.z,
-                                                 ToRadians(h.phiMaxDegrees)),
-        area_oracles::NearestToAxis<double>(a.x, a.y, b.x, b.y));
+    return ToDouble(area_oracles::ParametricArea<LD>(
+        area_oracles::HyperboloidSurface<LD>(a.x, a.y, a.z, b.x, b.y, b.z,
+                                             ToRadians(h.phiMaxDegrees)),
+        kQuadratureRelTol, area_oracles::NearestToAxis<LD>(a.x, a.y, b.x, b.y)));
 }
 // The profile by height; split where the segment passes nearest the axis,
 // where the profile of a segment that crosses the axis has a corner.
 Integral HyperboloidByProfile(const HyperboloidParams &h) {
+    using LD = long double;
     const Point3f &a = h.p1, &b = h.p2;
-    Profile profile = area_oracles::HyperboloidGraphProfile<double>(
-        a.x, a.y, a.z, b.x, b.y, b.z);
-    double v = area_oracles::NearestToAxis<double>(a.x, a.y, b.x, b.y);
-    double zLo = std::min(a.z, b.z), zHi = std::max(a.z, b.z);
-    double phi = ToRadians(h.phiMaxDegrees);
-    if (!(v > 0 && v < 1)) return RevolutionArea(profile, zLo, zHi, phi);
-    double zSplit = double(a.z) + v * (double(b.z) - double(a.z));
-    Integral lo = RevolutionArea(profile, zLo, zSplit, phi);
-    Integral hi = RevolutionArea(profile, zSplit, zHi, phi);
-    return {lo.value + hi.value, lo.converged && hi.converged};
+    area_oracles::Profile<LD> profile =
+        area_oracles::HyperboloidGraphProfile<LD>(a.x, a.y, a.z, b.x, b.y,
+                                                  b.z);
+    LD v = area_oracles::NearestToAxis<LD>(a.x, a.y, b.x, b.y);
+    LD zLo = std::min(a.z, b.z), zHi = std::max(a.z, b.z);
+    LD phi = ToRadians(h.phiMaxDegrees);
+    auto area = [&](LD z0, LD z1) {
+        return area_oracles::RevolutionArea<LD>(profile, z0, z1, phi,
+                                                kQuadratureRelTol);
+    };
+    if (!(v > 0 && v < 1)) return ToDouble(area(zLo, zHi));
+    LD zSplit = LD(a.z) + v * (LD(b.z) - LD(a.z));
+    area_oracles::Integral<LD> lo = area(zLo, zSplit), hi = area(zSplit, zHi);
+    return {double(lo.value + hi.value), lo.converged && hi.converged};
 }
 
 std::string Describe(const CylinderParams &c) {
@@ -525,7 +538,10 @@ TEST(AreaQuadrature, QuadricDerivativesMatchFiniteDifferences) {
          {0.0, 0.5, 1.3}},
         {area_oracles::HyperboloidGraphProfile<double>(1, 0.5, -1, -0.3, 1.2,
                                                        2),
-         {-0.9, 0.0, 0.7, 1.9}}};
+         {-0.9, 0.0, 0.7, 1.9}},
+        {area_oracles::HyperboloidSegmentProfile<double>(1, 0.5, -1, -0.3,
+                                                         1.2, 2),
+         {0.1, 0.5, 0.9}}};
     for (const auto &c : profiles)
         for (double t : c.second) {
             ProfilePoint p = c.first(t);
@@ -610,8 +626,8 @@ TEST(QuadricAreaQuadrature, HyperboloidAsCylinderAndCone) {
                                    c.phiMaxDegrees});
         // The same cylinder, with its radius along another direction.
         Float turned = Area(HyperboloidParams{
-            Point3f(0.6f * c.radius, 0.8f * c.radius, c.z0),
-            Point3f(0.6f * c.radius, 0.8f * c.radius, c.z1),
+            Point3f(Float(0.6) * c.radius, Float(0.8) * c.radius, c.z0),
+            Point3f(Float(0.6) * c.radius, Float(0.8) * c.radius, c.z1),
             c.phiMaxDegrees});
         ExpectMatches(hyperboloid, {CylinderByParametrization(c)},
                       Describe(c));

@@ -331,19 +331,17 @@ LD StoredParaboloidArea(Float r, Float z0, Float z1) {
                        zMax, FullTurn());
 }
 
-// The stored hyperboloid's area, split where the segment passes nearest the
-// axis.
+// The stored hyperboloid's area, by its profile along the segment (for a
+// band a few ulps high, long double cannot hold the heights in between),
+// split where the segment passes nearest the axis.
 LD StoredHyperboloidArea(const Point3f &a, const Point3f &b) {
     area_oracles::Profile<LD> profile =
-        area_oracles::HyperboloidGraphProfile<LD>(a.x, a.y, a.z, b.x, b.y,
-                                                  b.z);
-    LD zLo = std::min(a.z, b.z), zHi = std::max(a.z, b.z);
+        area_oracles::HyperboloidSegmentProfile<LD>(a.x, a.y, a.z, b.x, b.y,
+                                                    b.z);
     LD v = area_oracles::NearestToAxis<LD>(a.x, a.y, b.x, b.y);
-    LD zSplit = LD(a.z) + v * (LD(b.z) - LD(a.z));
-    if (!(zSplit > zLo && zSplit < zHi))
-        return ProfileArea(profile, zLo, zHi, FullTurn());
-    return ProfileArea(profile, zLo, zSplit, FullTurn()) +
-           ProfileArea(profile, zSplit, zHi, FullTurn());
+    if (!(v > 0 && v < 1)) return ProfileArea(profile, 0, 1, FullTurn());
+    return ProfileArea(profile, 0, v, FullTurn()) +
+           ProfileArea(profile, v, 1, FullTurn());
 }
 
 Float HyperboloidArea(const Point3f &a, const Point3f &b) {

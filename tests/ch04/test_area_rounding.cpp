@@ -409,7 +409,7 @@ EXERCISE_TEST(Ex4_12_ParaboloidRounding, WithinGamma20OfStoredSurface) {
     }
 }
 
-// Bands a few units in the last place high and dishes up to ten million
+// Bands a few units in the last place high and dishes up to a million
 // times wider than deep keep the bound; pbrt-v3's form, in Float, does not.
 EXERCISE_TEST(Ex4_12_ParaboloidRounding, ThinBandsAndFlatDishes) {
     bool naiveFails = false;

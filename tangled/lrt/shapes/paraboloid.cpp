@@ -28,11 +28,11 @@ Paraboloid::Paraboloid(const Transform *ObjectToWorld,
             "Paraboloid: z0 and z1 must be finite and leave a surface above "
             "z = 0");
 }
-
 bool Paraboloid::LocateHit(const QuadricRay &q, QuadricHit *hit) const {
     q.PointAt(hit->t, &hit->p, &hit->pError);
     hit->phi = Azimuth(hit->p.x, hit->p.y);
-    return hit->p.z >= zMin && hit->p.z <= zMax && hit->phi <= phiMax;
+    return (zMin == 0 || hit->p.z >= zMin) && hit->p.z <= zMax &&
+           hit->phi <= phiMax;
 }
 SurfaceInteraction Paraboloid::DescribeHit(const QuadricRay &q,
                                            const QuadricHit &hit) const {

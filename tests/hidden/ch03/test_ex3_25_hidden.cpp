@@ -18,6 +18,7 @@
 #include "ch03/quadric_exact.h"
 
 #include <cmath>
+#include <cstdio>
 namespace {
 
 // Checks one ray against the oracle; returns false (with a failure) on a
@@ -81,6 +82,8 @@ EXERCISE_TEST(Ex3_25_QuadricRootsHidden, RaysParallelToTheLinesOfTheSurface) {
         if (!AgreesWithOracle(s, ray, "a ray parallel to a line")) ++wrong;
         hits += lrt::ex::IntersectQuadric(s, ray, 0).hit;
     }
+    std::printf("rays parallel to the lines of the surface: %d rays, %d hits\n",
+                kRays, hits);
     EXPECT_EQ(wrong, 0);
     EXPECT_GT(hits, kRays / 4);
 }
@@ -107,6 +110,8 @@ EXERCISE_TEST(Ex3_25_QuadricRootsHidden, RaysThroughTheMissingPartFindTheFarSide
         lrt::ShapeHit h = lrt::ex::IntersectQuadric(s, ray, 0);
         if (h.hit && h.isect.p.y > 0) ++farSide;
     }
+    std::printf("rays through the cut: %d rays, %d on the far side\n", kRays,
+                farSide);
     EXPECT_EQ(wrong, 0);
     EXPECT_GT(farSide, kRays / 4);
 }

@@ -1,9 +1,10 @@
 // Tests of chapter 6's bounding volume hierarchy, BVHAccel: the Middle and
-// EqualCounts split methods with several leaf sizes against a brute-force
-// loop over the primitives, on thousands of random scenes of spheres, disks
-// and triangles (and of every shape of chapter 3), traced without BVHAccel's own traversal (TreeWalker);
-// structure invariants of every tree built; degenerate inputs; Morton codes
-// against a bit-by-bit interleaving. (FastBVHAccel's tests are chapter 7's.)
+// EqualCounts split methods with several leaf sizes against a brute-force loop
+// over the primitives, on thousands of random scenes of spheres, disks and
+// triangles (and of every shape of chapter 3), traced without BVHAccel's own
+// traversal (TreeWalker); structure invariants of every tree built; degenerate
+// inputs; Morton codes against a bit-by-bit interleaving. (FastBVHAccel's tests
+// are chapter 7's.)
 //
 // The suites Ex6_5_*, Ex6_6_* and Ex6_7_* are the public tests of the
 // chapter's graded exercises (docs/exercises.md): BVHAccel's SAH decisions,

@@ -1,9 +1,10 @@
 // Tests of chapter 7's FastBVHAccel as the book writes it: with every split
 // method and several leaf sizes, and adopting BVHAccel's trees, against a
 // brute-force loop over the primitives on thousands of random scenes of
-// spheres, disks and triangles, and of every shape of chapter 3; structure invariants of every tree built;
-// degenerate inputs; its triangle test against Triangle::Intersect(), bit
-// for bit; its hits against BVHAccel's; rays with NaN and infinite
+// spheres, disks and triangles, and of every shape of chapter 3 (where
+// BVHAccel's own traversal is checked too); structure invariants of every tree
+// built; degenerate inputs; its triangle test against Triangle::Intersect(),
+// bit for bit; its hits against BVHAccel's; rays with NaN and infinite
 // components in every octant. The scenes and oracles are chapter 6's
 // (bvh_scenes.h), which the tests of BVHAccel use too; the checks of the
 // four-wide trees and the rays in every octant and with NaN components are

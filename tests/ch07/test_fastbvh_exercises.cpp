@@ -236,9 +236,12 @@ EXERCISE_TEST(Ex7_10_BinnedSAH, DecisionsFollowTheCostModel) {
                      "scene " + std::to_string(sceneIndex));
         if (::testing::Test::HasFailure()) return;
     }
+    // Few decisions may be so close that either answer passes (a property
+    // of the scenes, not of the code under test). About one in twenty is;
+    // the bound leaves room for the graded runs' fewer, random scenes.
     EXPECT_GT(count.decisions, 5 * scenes);
     EXPECT_GT(count.leaves, 2 * scenes);
-    EXPECT_LT(count.near, count.decisions / 20 + 1);
+    EXPECT_LT(count.near, count.decisions / 10 + 1);
 }
 
 // Small scenes whose decisions are known. Two unit spheres 4 apart split

@@ -27,9 +27,11 @@
 
 namespace {
 
-// Requests are read in large blocks, and the replies to all the requests of
-// a block are written together, before the worker waits for more: one pair
-// of system calls per block instead of per call.
+// Requests are read in large blocks, one system call per block; each reply
+// is written as soon as it is ready. The judge's time limit is per call: it
+// times the worker from its last reply, so replies held back until a whole
+// block (a few hundred calls) was answered made honest code of some tens of
+// milliseconds a call look like a call that never ends.
 class Channel {
   public:
     // The next request, or false at the end of the input.
@@ -136,6 +138,7 @@ int main() {
             lrt::calls::TheStore().currentCall = id;
             channel.Send(id, Serve(message));
         }
+        if (!channel.Flush()) break;
     }
     channel.Flush();
     return 0;

@@ -41,6 +41,14 @@ SLOW = '\n'.join(
      'for (int b = 0; b < 30000; ++b) s += a ^ b ^ k; return s; };'] +
     ['static_assert(spin(%d) != -1, "spin");' % k for k in range(4)])
 COMPILE_LIMIT = 3
+# The first PACED calls of each worker take 20 ms each: honest code, far
+# within the per-call limit (tg.TIME_LIMIT, 2 s), but a block of the judge's
+# requests holds more than a hundred of them, so a worker that answered a
+# block only when it had answered all of it would take longer than the limit
+# to send its first reply.
+PACED = 300
+PACING = ('{ static int calls = 0; if (calls++ < %d) { struct timespec ts = {0, 20000000}; '
+          'nanosleep(&ts, nullptr); } }' % PACED)
 # What the code throws after its exercise's stub message: the words that the
 # grader once took for the judge's (the end of GoogleTest's report of an
 # exception, the judge's report of a crash), and a record of the judge's.
@@ -310,9 +318,10 @@ class LimitsTest(unittest.TestCase):
                 ('odd', 'throw std::runtime_error(std::string("%s") + std::string(%d, '
                         '\'y\'));' % (ODD_PREFIX, LONG)),
                 ('forged', 'throw std::runtime_error(%s);' % json.dumps(forged)),
-                ('slow', SLOW + '\n' + SOLUTION)):
+                ('slow', SLOW + '\n' + SOLUTION),
+                ('paced', PACING + '\n' + SOLUTION)):
             tg.put_chapter(cls.tmp, name, tg.replace_region(text, tg.F10, code)
-                           if name == 'slow' else tg.inject(text, tg.F10, code))
+                           if name in ('slow', 'paced') else tg.inject(text, tg.F10, code))
         cls.no_bwrap = tg.failing_bwrap(os.path.join(cls.tmp, 'no-bwrap'))
 
     @classmethod
@@ -416,9 +425,16 @@ class LimitsTest(unittest.TestCase):
         # The judge and the other exercises' workers are in the cache by now.
         self.assertLess(elapsed, 60)
 
+    def check_paced(self, fallback):
+        # Each call is answered when it is done: the limit is per call.
+        results, _, _ = self.grade('paced', fallback)
+        for test in results['tests']:
+            self.assertEqual(test['status'], 'passed', (test['name'], test['output']))
+        self.assertAlmostEqual(results['score'], results['max_score'], places=3)
+
     @unittest.skipUnless(os.geteuid() == 0, 'the sandbox drops to its own user only as root')
     def test_bubblewrap(self):
-        for check in (self.check_huge, self.check_odd, self.check_slow):
+        for check in (self.check_huge, self.check_odd, self.check_slow, self.check_paced):
             with self.subTest(check.__name__):
                 check(fallback=False)
 
@@ -428,7 +444,7 @@ class LimitsTest(unittest.TestCase):
 
     @unittest.skipUnless(os.geteuid() == 0, 'the fallback needs root')
     def test_fallback_without_namespaces(self):
-        for check in (self.check_huge, self.check_odd, self.check_slow):
+        for check in (self.check_huge, self.check_odd, self.check_slow, self.check_paced):
             with self.subTest(check.__name__):
                 check(fallback=True)
 

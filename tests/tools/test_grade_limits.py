@@ -25,7 +25,8 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))
 import test_grade as tg  # noqa: E402
 from tools.exercises import markup  # noqa: E402
-from tools.grading import build as grade_build, judging, records, sandbox, submission  # noqa: E402
+from tools.grading import build as grade_build, judging, records, sandbox, structure, submission  # noqa: E402
+from tools.grading.grade import structure_note  # noqa: E402
 from tools.grading.report import Report, Result  # noqa: E402
 
 # ex-5.10's region, after the book's solution lines.
@@ -268,6 +269,53 @@ class ShownTextTest(unittest.TestCase):
         report.results.append(r)
         suites = ET.fromstring(report.junit())
         self.assertIn('odd ??? characters', ''.join(suites.itertext()))
+
+
+class StructureLimitTest(unittest.TestCase):
+    """A chapter can make a structure problem of every line: a solution
+    region of fragment uses (a red team's submission) gave one line of
+    feedback per 6 bytes, 45 MB of results.json and 384 MB in the grader for
+    1.2 MB of such lines. The problems listed are capped and counted."""
+    LINES = 5000
+
+    def test_the_problems_listed_are_capped_and_counted(self):
+        text = tg.read(os.path.join(tg.ROOT, tg.CHAPTER))
+        bomb = '\n'.join(['<<a>>'] * self.LINES)
+        tmp = tempfile.mkdtemp(prefix='lrt-structure-')
+        try:
+            path = os.path.join(tmp, os.path.basename(tg.CHAPTER))
+            with open(path, 'w', encoding='utf-8') as f:
+                f.write(tg.replace_region(text, tg.F10, bomb))
+            cwd = os.getcwd()
+            os.chdir(tg.ROOT)
+            try:
+                reference, _ = structure.parse_chapter(tg.CHAPTER)
+                student, _ = structure.parse_chapter(path)
+            finally:
+                os.chdir(cwd)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+        problems, changes, _ = structure.check_structure(reference, student, tg.CHAPTER)
+        self.assertEqual(len(problems), structure.MAX_LISTED + 1)
+        self.assertIn('<<a>>', problems[0])
+        more = self.LINES - structure.MAX_LISTED
+        self.assertEqual(problems[-1], '... and %d more problems' % more)
+        self.assertLessEqual(len(changes), structure.MAX_LISTED + 1)
+
+    def test_a_long_message_is_cut(self):
+        listed = structure.Listed()
+        listed.append('x' * 100000)
+        self.assertLess(len(listed[0]), structure.MAX_MESSAGE + 40)
+        self.assertTrue(listed[0].endswith('... (100000 characters)'))
+
+    def test_a_chunk_name_cannot_bring_markdown_into_the_feedback(self):
+        # Names quoted in a problem are the student's: a link, an image or
+        # bold text in one must stay text, in a code span it cannot close.
+        name = '![pixel](https://example.org/p.png) [click](https://example.org) **PASSED** `x`'
+        line = structure_note('chapters/05.md:9: in <<F>>: fragment use <<%s>>' % name)
+        self.assertTrue(line.startswith('- `') and line.endswith('`'))
+        self.assertNotIn('`', line[3:-1])
+        self.assertIn('![pixel](https://example.org/p.png)', line)
 
 
 class PeakMemory:

@@ -65,6 +65,13 @@ from tools.grading.submission import printable, read_submission  # noqa: E402
 DEFAULT_CXXFLAGS = ' '.join(grade_build.WORKER_CXXFLAGS)  # tools/compile/flags.mk
 
 
+
+def structure_note(message):
+    """A structure problem as a line of the feedback: in a code span, since
+    it quotes the student's chunk names, which may hold Markdown (links,
+    images) that the feedback must not render."""
+    return '- `%s`' % printable(message.replace('`', "'"))
+
 def grade(args, path, out):
     root = args.root
     ref_paths, book = load_book(root)
@@ -165,7 +172,7 @@ def grade_chapter(args, book, chapter, submitted, ref_paths, report):
         elif changes:
             notes.append('**Warning**: code outside the exercises was changed; the '
                          'book\'s code is used there instead of yours:')
-        notes += ['- ' + p for p in problems] + ['- ' + c for c in changes]
+        notes += [structure_note(p) for p in problems + changes]
         report.notes += ['', '### Chapter %s (`%s`)' % (number, student_name)] + \
             (notes or ['Structure: as in the book.'])
         report.notes.append('Each exercise is built with your code for it and the book\'s '

@@ -37,11 +37,41 @@ def chunk_regions(chunk):
     return regions, errors
 
 
+# A chapter can make a problem of every one of its lines (a solution region
+# of fragment uses, a chunk per line): the messages listed per chapter are
+# capped, and the rest counted, so that the feedback and the grader's memory
+# stay small whatever the chapter holds.
+MAX_LISTED = 20
+MAX_MESSAGE = 400   # characters of one message (a chunk name can be long)
+
+
+class Listed(list):
+    """Messages: the first MAX_LISTED, each cut to MAX_MESSAGE characters,
+    and the number of those left out (`more`)."""
+    def __init__(self):
+        super().__init__()
+        self.more = 0
+
+    def append(self, message):
+        if len(self) < MAX_LISTED:
+            super().append(message if len(message) <= MAX_MESSAGE else
+                           message[:MAX_MESSAGE] + '... (%d characters)' % len(message))
+        else:
+            self.more += 1
+
+    def closed(self, what):
+        """The list, with a last line that counts what was left out."""
+        if self.more:
+            super().append('... and %d more %s' % (self.more, what))
+        return list(self)
+
+
 def check_structure(reference, student, student_name, allow=False):
     """Compares two parsed chapters. Returns (problems, code_changed, plan):
     problems are messages; plan maps each reference region to the student's
-    region lines ((line, text) list) or None (deleted: use the stub)."""
-    problems = []
+    region lines ((line, text) list) or None (deleted: use the stub).
+    At most MAX_LISTED problems and changes are listed (see Listed)."""
+    problems = Listed()
     not_done = '' if allow else ': graded as not done'
     exercise_chunks = {f: e for e in reference.exercises for f in e.fragments}
     ref_names = [c.name for c in reference.chunks]
@@ -83,7 +113,7 @@ def check_structure(reference, student, student_name, allow=False):
     ref_seq = [(c.name, skeleton(c, [r for r in reference.regions if r.chunk is c]))
                for c in reference.chunks]
     stu_seq = [(c.name, skeleton(c, stu_regions[id(c)])) for c in student.chunks]
-    changes = []
+    changes = Listed()
     matcher = difflib.SequenceMatcher(None, ref_seq, stu_seq, autojunk=False)
     for tag, i1, i2, j1, j2 in matcher.get_opcodes():
         if tag == 'equal':
@@ -131,7 +161,7 @@ def check_structure(reference, student, student_name, allow=False):
                             'extra ones are not graded' % (student_name,
                                                            extra.line(extra.begin),
                                                            name, len(stu_r), len(ref_r)))
-    return problems, changes, plan
+    return problems.closed('problems'), changes.closed('changes'), plan
 
 
 def compose(base, base_name, fills):

@@ -714,6 +714,20 @@ EXERCISE_TEST(Ex4_12_ParaboloidAreaHidden, AdditivityScalingAndMonotony) {
             ASSERT_LT(A(r, zMid, zMax, deg), A(r, zMin, zMax, deg))
                 << "r=" << r << " zMin=" << zMin << " zMax=" << zMax;
         }
+        // Over its shadow on the plane z = 0, the surface's area element is
+        // sqrt(1 + |grad z|^2) times the shadow's, and |grad z| = 2 rho
+        // zMax / r^2 grows from the band's lower rim to its upper one: the
+        // area lies between the shadow's times those two factors. (The
+        // shadow's area alone, with no slope, fails the lower bound.)
+        LD rr = r, lo = zMin, hi = zMax, phi = LD(deg) * kPi / 180;
+        LD shadow = phi / 2 * rr * rr * (hi - lo) / hi;
+        LD least = shadow * std::sqrt(1 + 4 * lo * hi / (rr * rr));
+        LD most = shadow * std::sqrt(1 + 4 * hi * hi / (rr * rr));
+        LD area = A(r, zMin, zMax, deg);
+        ASSERT_GE(area, least * (1 - tol))
+            << "r=" << r << " zMin=" << zMin << " zMax=" << zMax;
+        ASSERT_LE(area, most * (1 + tol))
+            << "r=" << r << " zMin=" << zMin << " zMax=" << zMax;
     }
 }
 

@@ -1,0 +1,131 @@
+// Tests of Cylinder against the long-double oracle of quadrics_oracle.h:
+// random rays in object space and through affine transformations, shapes
+// far from the origin, spawned rays, the far root, special rays, the bound,
+// the orientation and bad input.
+#include "quadrics_oracle.h"
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+std::vector<QuadricDef> Cylinders() {
+    return {CylinderDef(1.0, -1, 1, 360, "full cylinder"),
+            CylinderDef(0.7, -0.3, 1.2, 250, "partial cylinder"),
+            CylinderDef(2.0, 0.5, 0.9, 90, "short quarter cylinder"),
+            CylinderDef(0.05, -0.02, 0.1, 300, "small cylinder")};
+}
+
+}  // namespace
+
+TEST(Cylinder, AgreesWithLongDoubleOracle) {
+    RunOracle("Cylinder", Cylinders(), 3200);
+}
+
+TEST(Cylinder, FarFromTheOriginWithinTheErrorBounds) {
+    RunFar("Cylinder", Cylinders(), 3201);
+}
+
+TEST(Cylinder, SpawnedRaysNeverHitAgainNearTheirOrigin) {
+    RunSpawn("Cylinder", Cylinders(), 3202);
+}
+
+TEST(Cylinder, ReverseOrientationFlipsNormalAndItsDerivatives) {
+    RunReverse(Cylinders(), 3203);
+}
+
+TEST(Cylinder, FarRootWhenTheNearOneIsCut) {
+    // Through the missing wedge (phi from 270 to 360 degrees), through the
+    // open ends, and from inside: the oracle must find the far root, and
+    // lrt must agree.
+    QuadricDef def = CylinderDef(1, -1, 1, 270, "three-quarter cylinder");
+    std::vector<QRay> rays = {
+        {L3(0.5L, -3, 0), L3(0, 1, 0)},         // wedge, then the wall
+        {L3(-3, 0.3L, 3.5L), L3(1, 0, -1)},     // in at the top end
+        {L3(-3, 0.3L, -3.5L), L3(1, 0, 1)},     // in at the bottom end
+        {L3(3, -0.5L, 0.2L), L3(-1, 0.1L, 0.05L)},  // wedge, from +x
+    };
+    CheckFarRoots(def, rays);
+}
+
+TEST(Cylinder, SpecialRays) {
+    lrt::Transform id;
+    lrt::Cylinder c(&id, &id, false, 1, -1, 1, 360);
+    lrt::Float tHit = 7;
+    lrt::SurfaceInteraction si;
+    // Parallel to the axis, inside or outside: the quadratic vanishes.
+    for (lrt::Point3f o : {lrt::Point3f(0, 0, -5), lrt::Point3f(0.5f, 0.2f, 5),
+                           lrt::Point3f(2, 0, -5)})
+        for (lrt::Float dz : {1.0f, -1.0f}) {
+            lrt::Ray r(o, lrt::Vector3f(0, 0, dz));
+            EXPECT_FALSE(c.Intersect(r, &tHit, &si)) << r;
+            EXPECT_FALSE(c.IntersectP(r)) << r;
+        }
+    // Along the surface itself: either answer, but no NaN.
+    if (c.Intersect(lrt::Ray(lrt::Point3f(1, 0, -5), lrt::Vector3f(0, 0, 1)),
+                    &tHit, &si)) {
+        EXPECT_FALSE(si.n.HasNaNs());
+        EXPECT_FALSE(std::isnan(tHit));
+    }
+    // From the axis, perpendicular to it: t is the radius over |d|, the
+    // normal points outward although the ray comes from inside.
+    ASSERT_TRUE(c.Intersect(
+        lrt::Ray(lrt::Point3f(0, 0, 0.3f), lrt::Vector3f(0, -2, 0)), &tHit,
+        &si));
+    EXPECT_NEAR(tHit, 0.5, 1e-6);
+    EXPECT_NEAR(si.n.y, -1, 1e-6);
+    EXPECT_NEAR(si.uv.x, 0.75, 1e-6);
+    EXPECT_NEAR(si.uv.y, 0.65, 1e-6);
+    // The seam at phi = 2 pi has no crack.
+    int seamHits = 0;
+    for (int i = 1; i <= 1000; ++i) {
+        lrt::Float y = -lrt::Float(i) * lrt::Float(1e-9);
+        lrt::Ray r(lrt::Point3f(3, y, 0.1f), lrt::Vector3f(-1, 0, 0));
+        if (c.Intersect(r, &tHit, &si)) {
+            ++seamHits;
+            EXPECT_GT(si.uv.x, 0.99f);
+        }
+    }
+    EXPECT_EQ(seamHits, 1000);
+    // tMax just before and just after the hit.
+    EXPECT_FALSE(c.IntersectP(
+        lrt::Ray(lrt::Point3f(-5, 0, 0), lrt::Vector3f(1, 0, 0), 3.99f)));
+    EXPECT_TRUE(c.IntersectP(
+        lrt::Ray(lrt::Point3f(-5, 0, 0), lrt::Vector3f(1, 0, 0), 4.01f)));
+}
+
+TEST(Cylinder, ObjectBound) {
+    CheckBound(CylinderDef(1.5, -0.5, 2, 360, "cylinder"),
+               lrt::Point3f(-1.5f, -1.5f, -0.5f), lrt::Point3f(1.5f, 1.5f, 2),
+               3204);
+    CheckBound(CylinderDef(0.3, 0.7, 0.2, 100, "cylinder, z swapped"),
+               lrt::Point3f(-0.3f, -0.3f, 0.2f), lrt::Point3f(0.3f, 0.3f, 0.7f),
+               3205);
+    // Clamped phiMax: 400 degrees is a full turn.
+    CheckBound(CylinderDef(2, -1, 1, 400, "cylinder, phiMax 400"),
+               lrt::Point3f(-2, -2, -1), lrt::Point3f(2, 2, 1), 3206);
+}
+
+TEST(Cylinder, BadInput) {
+    lrt::Transform id;
+    const lrt::Float nan = std::numeric_limits<lrt::Float>::quiet_NaN();
+    const lrt::Float inf = lrt::Infinity;
+    auto make = [&](const lrt::Transform *a, const lrt::Transform *b,
+                    lrt::Float r, lrt::Float z0, lrt::Float z1,
+                    lrt::Float phi) {
+        return [=]() { lrt::Cylinder c(a, b, false, r, z0, z1, phi); };
+    };
+    ExpectRejected("Cylinder", {
+        make(&id, &id, 0, -1, 1, 360), make(&id, &id, -1, -1, 1, 360),
+        make(&id, &id, nan, -1, 1, 360), make(&id, &id, inf, -1, 1, 360),
+        make(&id, &id, 1, 0.5f, 0.5f, 360), make(&id, &id, 1, nan, 1, 360),
+        make(&id, &id, 1, -1, nan, 360), make(&id, &id, 1, -inf, 1, 360),
+        make(&id, &id, 1, -1, inf, 360), make(&id, &id, 1, -1, 1, 0),
+        make(&id, &id, 1, -1, 1, -20), make(&id, &id, 1, -1, 1, nan)});
+    EXPECT_THROW(make(nullptr, &id, 1, -1, 1, 360)(), std::invalid_argument);
+    EXPECT_THROW(make(&id, nullptr, 1, -1, 1, 360)(), std::invalid_argument);
+    ExpectNoHitOnBadRays(CylinderDef(1, -1, 1, 360, "cylinder"));
+    ExpectNoHitOnBadRays(CylinderDef(1, -0.5, 1, 200, "partial cylinder"));
+}

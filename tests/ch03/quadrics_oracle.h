@@ -352,17 +352,52 @@ inline LD Magnitude(const Geom &g, L3 p) {
            g.rRef * g.rRef;
 }
 
+// The discriminant b^2 - 4ac, computed so that it stays accurate when
+// those two terms nearly cancel (a line passing near an apex, or nearly
+// tangent, far from its origin): then it is -4a times the quadratic's
+// value at its vertex, evaluated at the vertex's point, where the terms of
+// x^2 + y^2 - Q(z) are small.
+inline LD Discriminant(const Geom &g, L3 o, L3 d, const Quadratic &q) {
+    LD bb = q.B * q.B, ac4 = 4 * q.A * q.C;
+    if (!(std::abs(ac4) > 0.5L * bb)) return bb - ac4;
+    LD tv = -q.B / (2 * q.A);
+    L3 p = o + tv * d;
+    return -4 * q.A * g.Implicit(p.x, p.y, p.z);
+}
+
+// A root polished by Newton's method on x^2 + y^2 - Q(z) evaluated at the
+// point o + t d (as long as that decreases the residual).
+inline LD Refine(const Geom &g, L3 o, L3 d, LD t) {
+    if (!std::isfinite(t)) return t;
+    auto f = [&](LD s) {
+        L3 p = o + s * d;
+        return g.Implicit(p.x, p.y, p.z);
+    };
+    LD ft = f(t);
+    for (int i = 0; i < 4 && ft != 0; ++i) {
+        L3 p = o + t * d;
+        LD slope = dot3(g.Gradient(p), d);
+        if (!(slope != 0)) break;
+        LD tn = t - ft / slope, fn = f(tn);
+        if (!(std::abs(fn) < std::abs(ft))) break;
+        t = tn;
+        ft = fn;
+    }
+    return t;
+}
+
 // The roots of the line's quadratic, without any clipping.
 inline std::vector<LD> ExactRoots(const Geom &g, const ObjectRay &ray) {
     Quadratic q = Coefficients(g, ray.o, ray.d);
     if (q.A == 0) {
         if (q.B == 0) return {};
-        return {-q.C / q.B};
+        return {Refine(g, ray.o, ray.d, -q.C / q.B)};
     }
-    LD disc = q.B * q.B - 4 * q.A * q.C;
+    LD disc = Discriminant(g, ray.o, ray.d, q);
     if (disc < 0) return {};
     LD s = std::sqrt(disc), qq = -0.5L * (q.B + (q.B < 0 ? -s : s));
-    return {qq / q.A, qq != 0 ? q.C / qq : qq / q.A};
+    return {Refine(g, ray.o, ray.d, qq / q.A),
+            Refine(g, ray.o, ray.d, qq != 0 ? q.C / qq : qq / q.A)};
 }
 
 inline QOracle Trace(const Geom &g, const ObjectRay &ray, LD tMax) {
@@ -409,7 +444,7 @@ inline QOracle Trace(const Geom &g, const ObjectRay &ray, LD tMax) {
     LD roots[2], errs[2];
     int n = 0;
     if (q.A != 0) {
-        LD disc = q.B * q.B - 4 * q.A * q.C;
+        LD disc = Discriminant(g, o, d, q);
         LD tv = -q.B / (2 * q.A);
         LD dDisc = 4 * std::abs(q.A) * tolG(tv);
         if (std::abs(disc) <= dDisc) res.ambiguous = true;  // nearly tangent
@@ -417,7 +452,8 @@ inline QOracle Trace(const Geom &g, const ObjectRay &ray, LD tMax) {
         LD s = std::sqrt(disc);
         LD qq = -0.5L * (q.B + (q.B < 0 ? -s : s));
         LD dq = kQAlg * eps * Mb + dDisc / (2 * s);
-        LD ta = qq / q.A, tb = qq != 0 ? q.C / qq : ta;
+        LD ta = Refine(g, o, d, qq / q.A);
+        LD tb = qq != 0 ? Refine(g, o, d, q.C / qq) : ta;
         LD ea = std::abs(ta) * (dq / std::abs(qq) + kQAlg * eps * Ma / std::abs(q.A));
         LD eb = (kQAlg * eps * Mc + std::abs(tb) * dq) / std::abs(qq);
         if (!(qq != 0)) eb = ea;
@@ -432,7 +468,7 @@ inline QOracle Trace(const Geom &g, const ObjectRay &ray, LD tMax) {
         if ((roots[1] - roots[0]) * dl <= errs[0] + errs[1])
             res.ambiguous = true;
     } else if (q.B != 0) {
-        roots[0] = -q.C / q.B;
+        roots[0] = Refine(g, o, d, -q.C / q.B);
         errs[0] = (kQAlg * eps * (Mc + std::abs(roots[0]) * Mb)) / std::abs(q.B) *
                       dl + moved(roots[0]);
         n = 1;
@@ -680,7 +716,11 @@ inline void QCompare(const Geom &g, const QOracle &orc, const ObjectRay &ob,
         st.Fail(where() + ": n " + Str(ToL(si.n)) + " vs " + Str(nw));
     if (!orc.nearSeam && !(std::abs(si.uv.x - u) <= 1e-5L + 4 * du))
         st.Fail(where() + ": u " + std::to_string(si.uv.x) + " vs " +
-                std::to_string((double)u));
+                std::to_string((double)u) + " at " + Str(orc.p) + ", " +
+                std::to_string((double)orc.uv.rho) +
+                " from the axis; position error bound " +
+                std::to_string((double)orc.posErr) + ", lrt's p " +
+                Str(ToL(si.p)) + " vs " + Str(pw));
     if (!(std::abs(si.uv.y - v) <= 1e-5L + 4 * dv))
         st.Fail(where() + ": v " + std::to_string(si.uv.y) + " vs " +
                 std::to_string((double)v));
@@ -1071,8 +1111,10 @@ inline void RunReverse(const std::vector<QuadricDef> &defs, uint64_t seed) {
 
 // The object bound contains random points of the surface and is the box of
 // the specification: attained at its extremes.
-inline void CheckBound(const QuadricDef &def, lrt::Point3f pMin,
-                       lrt::Point3f pMax, uint64_t seed) {
+inline void CheckBound(const QuadricDef &def, D3 lo3, D3 hi3, uint64_t seed) {
+    // The corners as the shape's Float parameters give them.
+    lrt::Point3f pMin(ToFloat(lo3.x), ToFloat(lo3.y), ToFloat(lo3.z));
+    lrt::Point3f pMax(ToFloat(hi3.x), ToFloat(hi3.y), ToFloat(hi3.z));
     lrt::Transform id;
     auto shape = MakeShape(def, &id, &id, false);
     lrt::Bounds3f b = shape->ObjectBound();

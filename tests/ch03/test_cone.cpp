@@ -131,10 +131,10 @@ TEST(Cone, RaysThroughTheApexAndAlongTheAxis) {
 }
 
 TEST(Cone, ObjectBound) {
-    CheckBound(ConeDef(2, 1.5, 360, "cone"), lrt::Point3f(-1.5f, -1.5f, 0),
-               lrt::Point3f(1.5f, 1.5f, 2), 3306);
-    CheckBound(ConeDef(0.5, 3, 45, "cone sector"), lrt::Point3f(-3, -3, 0),
-               lrt::Point3f(3, 3, 0.5f), 3307);
+    CheckBound(ConeDef(2, 1.5, 360, "cone"), D3(-1.5, -1.5, 0),
+               D3(1.5, 1.5, 2), 3306);
+    CheckBound(ConeDef(0.5, 3, 45, "cone sector"), D3(-3, -3, 0),
+               D3(3, 3, 0.5), 3307);
 }
 
 TEST(Cone, BadInput) {

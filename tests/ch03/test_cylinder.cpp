@@ -98,14 +98,14 @@ TEST(Cylinder, SpecialRays) {
 
 TEST(Cylinder, ObjectBound) {
     CheckBound(CylinderDef(1.5, -0.5, 2, 360, "cylinder"),
-               lrt::Point3f(-1.5f, -1.5f, -0.5f), lrt::Point3f(1.5f, 1.5f, 2),
+               D3(-1.5, -1.5, -0.5), D3(1.5, 1.5, 2),
                3204);
     CheckBound(CylinderDef(0.3, 0.7, 0.2, 100, "cylinder, z swapped"),
-               lrt::Point3f(-0.3f, -0.3f, 0.2f), lrt::Point3f(0.3f, 0.3f, 0.7f),
+               D3(-0.3, -0.3, 0.2), D3(0.3, 0.3, 0.7),
                3205);
     // Clamped phiMax: 400 degrees is a full turn.
     CheckBound(CylinderDef(2, -1, 1, 400, "cylinder, phiMax 400"),
-               lrt::Point3f(-2, -2, -1), lrt::Point3f(2, 2, 1), 3206);
+               D3(-2, -2, -1), D3(2, 2, 1), 3206);
 }
 
 TEST(Cylinder, BadInput) {

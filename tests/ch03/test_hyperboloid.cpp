@@ -171,15 +171,15 @@ TEST(Hyperboloid, SpecialRays) {
 
 TEST(Hyperboloid, ObjectBound) {
     CheckBound(HyperboloidDef(D3(1, 0, -1), D3(0, 1, 1), 360, "hyperboloid"),
-               lrt::Point3f(-1, -1, -1), lrt::Point3f(1, 1, 1), 3508);
+               D3(-1, -1, -1), D3(1, 1, 1), 3508);
     // rMax from the farther endpoint; the waist is nearer the axis.
     double r2 = std::hypot(1.2, -0.5);
     CheckBound(HyperboloidDef(D3(0.3, 0.4, 1.5), D3(1.2, -0.5, 0.2), 240,
                               "hyperboloid, point2 below point1"),
-               lrt::Point3f(-r2, -r2, 0.2f), lrt::Point3f(r2, r2, 1.5f), 3509);
+               D3(-r2, -r2, 0.2), D3(r2, r2, 1.5), 3509);
     CheckBound(HyperboloidDef(D3(0.5, 0, 1), D3(0, 0, 0), 360,
                               "hyperboloid that is a cone"),
-               lrt::Point3f(-0.5f, -0.5f, 0), lrt::Point3f(0.5f, 0.5f, 1),
+               D3(-0.5, -0.5, 0), D3(0.5, 0.5, 1),
                3510);
 }
 

@@ -98,13 +98,13 @@ TEST(Paraboloid, RaysThroughTheTipAndAlongTheAxis) {
 
 TEST(Paraboloid, ObjectBound) {
     CheckBound(ParaboloidDef(1.5, 0, 2, 360, "paraboloid"),
-               lrt::Point3f(-1.5f, -1.5f, 0), lrt::Point3f(1.5f, 1.5f, 2),
+               D3(-1.5, -1.5, 0), D3(1.5, 1.5, 2),
                3405);
     CheckBound(ParaboloidDef(0.5, 1, 0.25, 60, "paraboloid, z swapped"),
-               lrt::Point3f(-0.5f, -0.5f, 0.25f), lrt::Point3f(0.5f, 0.5f, 1),
+               D3(-0.5, -0.5, 0.25), D3(0.5, 0.5, 1),
                3406);
     CheckBound(ParaboloidDef(1, -3, 2, 360, "paraboloid, z0 < 0"),
-               lrt::Point3f(-1, -1, 0), lrt::Point3f(1, 1, 2), 3407);
+               D3(-1, -1, 0), D3(1, 1, 2), 3407);
 }
 
 TEST(Paraboloid, BadInput) {

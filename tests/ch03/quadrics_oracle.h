@@ -993,9 +993,10 @@ inline lrt::Ray OffsetRay(const lrt::SurfaceInteraction &si, lrt::Vector3f w) {
 // the same shape at t near 0: any hit must lie farther from the origin than
 // the chord of the surface's curvature can make it.
 inline void RunSpawn(const char *shapeName, const std::vector<QuadricDef> &defs,
-                     uint64_t seed) {
+                     uint64_t seed, bool expectControlHits = true) {
     Rng rng(seed);
     long spawned = 0, nearHits = 0, fartherHits = 0, grazing = 0, chords = 0;
+    long unoffsetNear = 0;
     std::vector<QXf> xfs = Transforms();
     for (const QuadricDef &def : defs) {
         Geom g(def);
@@ -1027,6 +1028,13 @@ inline void RunSpawn(const char *shapeName, const std::vector<QuadricDef> &defs,
                     }
                     lrt::Ray sr = OffsetRay(si, w);
                     ++spawned;
+                    // The control: the same ray from the hit point itself,
+                    // which often finds the surface it leaves.
+                    lrt::Float t0;
+                    lrt::SurfaceInteraction si0;
+                    if (shape->Intersect(lrt::Ray(si.p, w), &t0, &si0) &&
+                        t0 * len3(ToL(w)) <= 16 * len3(ToL(si.pError)))
+                        ++unoffsetNear;
                     lrt::Float t2;
                     lrt::SurfaceInteraction si2;
                     bool again = shape->Intersect(sr, &t2, &si2);
@@ -1067,9 +1075,16 @@ inline void RunSpawn(const char *shapeName, const std::vector<QuadricDef> &defs,
     std::printf("Quadric %s spawned rays: %ld rays, %ld hit again near the "
                 "origin where the exact line does not (%ld short chords that "
                 "it does), %ld hit the shape farther away, %ld grazing "
-                "directions skipped\n",
-                shapeName, spawned, nearHits, chords, fartherHits, grazing);
+                "directions skipped; from the hit points themselves, %ld hit "
+                "again near the origin\n",
+                shapeName, spawned, nearHits, chords, fartherHits, grazing,
+                unoffsetNear);
     EXPECT_EQ(nearHits, 0);
+    // Without the offset, rays do find the surface they leave: the test can
+    // tell.
+    if (expectControlHits) {
+        EXPECT_GT(unoffsetNear, 0);
+    }
     EXPECT_GT(spawned, 1000);
 }
 

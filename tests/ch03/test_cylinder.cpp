@@ -29,7 +29,10 @@ TEST(Cylinder, FarFromTheOriginWithinTheErrorBounds) {
 }
 
 TEST(Cylinder, SpawnedRaysNeverHitAgainNearTheirOrigin) {
-    RunSpawn("Cylinder", Cylinders(), 3202);
+    // The cylinder projects its hit points onto the surface, so even rays
+    // from the points themselves seldom find it again (none in double
+    // precision): no control here.
+    RunSpawn("Cylinder", Cylinders(), 3202, false);
 }
 
 TEST(Cylinder, ReverseOrientationFlipsNormalAndItsDerivatives) {

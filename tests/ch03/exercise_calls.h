@@ -1,8 +1,9 @@
 // Chapter 3's exercise calls (tests/calls/calls.h): the tests of ex-3.22
 // (OffsetRayOrigin(), and the Interaction methods that spawn rays with it),
 // ex-3.23 (Triangle::Intersect() and IntersectP(), whose ray coordinate
-// system the exercise builds) and ex-3.24 (ReadPly(), whose header parser the
-// exercise writes) reach that code only through these.
+// system the exercise builds), ex-3.24 (ReadPly(), whose header parser the
+// exercise writes) and ex-3.25 (the quadrics' Intersect() and IntersectP(),
+// whose quadratic the exercise sets up) reach that code only through these.
 //
 // Calls take values: a triangle mesh travels as its vertex data (MeshSpec)
 // and is built where the call runs; a PLY file travels as its bytes and is
@@ -16,6 +17,10 @@
 #include "lrt/shapes/disk.h"
 #include "lrt/shapes/triangle.h"
 #include "lrt/shapes/plyreader.h"
+#include "lrt/shapes/cylinder.h"
+#include "lrt/shapes/cone.h"
+#include "lrt/shapes/paraboloid.h"
+#include "lrt/shapes/hyperboloid.h"
 #include "calls/calls.h"
 #include "calls/memory_files.h"
 
@@ -146,6 +151,33 @@ struct PlyShapes {
     LRT_FIELDS(worldBounds, nearest)
 };
 
+// ---------------------------------------------------------------------------
+// ex-3.25: the quadrics
+
+// A cylinder, cone, paraboloid or hyperboloid, as the arguments of its
+// constructor (WorldToObject is the inverse of objectToWorld). The
+// paraboloid's z0 and z1 are zMin and zMax.
+enum QuadricKind { kCylinder, kCone, kParaboloid, kHyperboloid };
+struct QuadricSpec {
+    int kind = kCylinder;
+    Float radius = 1, zMin = -1, zMax = 1, height = 1, phiMax = 360;
+    Point3f p1, p2;
+    Transform objectToWorld;
+    bool reverseOrientation = false;
+    LRT_FIELDS(kind, radius, zMin, zMax, height, phiMax, p1, p2,
+               objectToWorld, reverseOrientation)
+};
+
+// One ray against one shape: Intersect() (with the tHit it was given, which
+// a miss must leave alone) and IntersectP(). isect.shapeIndex is 0 if the
+// interaction names the shape.
+struct ShapeHit {
+    bool hit = false, hitP = false;
+    Float tHit = 0;
+    SurfaceHit isect;
+    LRT_FIELDS(hit, hitP, tHit, isect)
+};
+
 namespace direct {
 
 // Helpers of the calls below; they are not calls themselves.
@@ -216,6 +248,41 @@ inline MeshHit Nearest(const std::vector<std::shared_ptr<Shape>> &shapes,
     }
     return best;
 }
+
+// The quadric that a spec describes, with the transformations it points to.
+struct BuiltQuadric {
+    explicit BuiltQuadric(const QuadricSpec &q)
+        : objectToWorld(q.objectToWorld),
+          worldToObject(Inverse(q.objectToWorld)) {
+        const Transform *o2w = &objectToWorld, *w2o = &worldToObject;
+        bool ro = q.reverseOrientation;
+        switch (q.kind) {
+        case kCylinder:
+            shape = std::make_shared<Cylinder>(o2w, w2o, ro, q.radius, q.zMin,
+                                               q.zMax, q.phiMax);
+            break;
+        case kCone:
+            shape = std::make_shared<Cone>(o2w, w2o, ro, q.height, q.radius,
+                                           q.phiMax);
+            break;
+        case kParaboloid:
+            shape = std::make_shared<Paraboloid>(o2w, w2o, ro, q.radius,
+                                                 q.zMin, q.zMax, q.phiMax);
+            break;
+        case kHyperboloid:
+            shape = std::make_shared<Hyperboloid>(o2w, w2o, ro, q.p1, q.p2,
+                                                  q.phiMax);
+            break;
+        default:
+            throw std::invalid_argument("no quadric of kind " +
+                                        std::to_string(q.kind));
+        }
+    }
+    BuiltQuadric(const BuiltQuadric &) = delete;
+    BuiltQuadric &operator=(const BuiltQuadric &) = delete;
+    const Transform objectToWorld, worldToObject;
+    std::shared_ptr<Shape> shape;
+};
 
 // Writes `bytes` to a file called `name` in a new directory of the
 // temporary directory, passes its path to `use`, and removes both. In the
@@ -345,6 +412,20 @@ inline PlyShapes CreatePLYMeshFile(std::string name, std::string bytes,
     });
 }
 
+// ex-3.25 ------------------------------------------------------------------
+
+// A quadric built for this one ray, against it.
+inline ShapeHit IntersectQuadric(QuadricSpec q, Ray ray, Float tHit) {
+    detail::BuiltQuadric b(q);
+    ShapeHit h;
+    SurfaceInteraction si;
+    h.tHit = tHit;
+    h.hit = b.shape->Intersect(ray, &h.tHit, &si);
+    h.hitP = b.shape->IntersectP(ray);
+    if (h.hit) h.isect = detail::Values(si, {b.shape});
+    return h;
+}
+
 }  // namespace direct
 }  // namespace lrt
 
@@ -360,6 +441,7 @@ LRT_EXERCISE_CALL(IntersectMesh)
 LRT_EXERCISE_CALL(HitsMesh)
 LRT_EXERCISE_CALL(ReadPlyFile)
 LRT_EXERCISE_CALL(CreatePLYMeshFile)
+LRT_EXERCISE_CALL(IntersectQuadric)
 
 namespace lrt {
 namespace ex {

@@ -1,0 +1,28 @@
+// lrt/shapes/paraboloid.h: tangled from chapters/03-shapes.md. Edit the chapter, not this file.
+#pragma once
+
+#include "lrt/shapes/quadric.h"
+
+namespace lrt {
+
+// Paraboloid Declarations
+class Paraboloid : public Quadric {
+  public:
+    // Paraboloid Public Methods
+    Paraboloid(const Transform *ObjectToWorld, const Transform *WorldToObject,
+               bool reverseOrientation, Float radius, Float z0, Float z1,
+               Float phiMax);
+    Bounds3f ObjectBound() const override {
+        return Bounds3f(Point3f(-radius, -radius, zMin),
+                        Point3f(radius, radius, zMax));
+    }
+    Float Area() const override;
+  protected:
+    bool LocateHit(const QuadricRay &q, QuadricHit *hit) const override;
+    SurfaceInteraction DescribeHit(const QuadricRay &q,
+                                   const QuadricHit &hit) const override;
+  private:
+    const Float radius, zMin, zMax;
+};
+
+}  // namespace lrt

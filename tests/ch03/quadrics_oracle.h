@@ -613,12 +613,31 @@ inline double PErrorRatio(const Geom &g, const LAffine &M, D3 p, D3 e) {
     // Near an apex the surface is two nappes meeting at a point, which a
     // grid of samples can miss: a box that holds the apex holds a point of
     // the surface.
+    // Where it curves tightly (a cone near its apex is thinner than the
+    // box), the samples can all fall on one side; the segment through p
+    // along the surface's normal, as far as the box reaches, finds the
+    // nearest part of the surface.
     L3 apex = M.Point(g.apex);
+    L3 pl(p.x, p.y, p.z);
+    L3 nw = norm3(M.Normal(g.Gradient(M.InvPoint(pl))));
     auto straddles = [&](double s) {
         if (g.hasApex && std::abs(apex.x - p.x) <= s * e.x &&
             std::abs(apex.y - p.y) <= s * e.y &&
             std::abs(apex.z - p.z) <= s * e.z)
             return true;
+        LD reach = std::numeric_limits<LD>::infinity();
+        for (int i = 0; i < 3; ++i)
+            if (nw[i] != 0) reach = std::min(reach, (LD)s * e[i] / std::abs(nw[i]));
+        if (std::isfinite(reach)) {
+            // Samples crowded near p: the segment may cross a thin part
+            // of the surface twice.
+            LD f0 = f(pl.x, pl.y, pl.z);
+            for (int j = -16; j <= 16; ++j) {
+                LD k = (LD)j / 16;
+                L3 a = pl + (reach * k * k * k) * nw;
+                if (f0 * f(a.x, a.y, a.z) <= 0) return true;
+            }
+        }
         return BoxStraddles(p, D3(s * e.x, s * e.y, s * e.z), f, 2);
     };
     if (straddles(0)) return 0;
@@ -675,7 +694,9 @@ inline void QCompare(const Geom &g, const QOracle &orc, const ObjectRay &ob,
         st.Fail(where() + ": the box p +- pError, p = " + Str(ToL(si.p)) +
                 ", pError = " + Str(ToL(si.pError)) +
                 ", misses the surface (needs " + std::to_string(ratio) +
-                " pError)");
+                " pError); in object space p = " +
+                Str(M.InvPoint(ToL(si.p))) + ", exact hit " +
+                (orc.hit ? Str(orc.p) : std::string("none")));
     if (si.shape != shape) st.Fail(where() + ": shape pointer");
     bool flip = reverse != M.mirror;
     if (si.flipNormal != flip) st.Fail(where() + ": flipNormal");

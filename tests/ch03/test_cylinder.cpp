@@ -1,7 +1,9 @@
 // Tests of Cylinder against the long-double oracle of quadrics_oracle.h:
 // random rays in object space and through affine transformations, shapes
 // far from the origin, spawned rays, the far root, special rays, the bound,
-// the orientation and bad input.
+// the orientation and bad input. The tests that intersect belong to
+// exercise ex-3.25 (suite Ex3_25_Cylinder) and reach the shape through its
+// exercise call; those that only construct it are suite Cylinder.
 #include "quadrics_oracle.h"
 
 #include <limits>
@@ -20,23 +22,23 @@ std::vector<QuadricDef> Cylinders() {
 
 }  // namespace
 
-TEST(Cylinder, AgreesWithLongDoubleOracle) {
+EXERCISE_TEST(Ex3_25_Cylinder, AgreesWithLongDoubleOracle) {
     RunOracle("Cylinder", Cylinders(), 3200);
 }
 
-TEST(Cylinder, FarFromTheOriginWithinTheErrorBounds) {
+EXERCISE_TEST(Ex3_25_Cylinder, FarFromTheOriginWithinTheErrorBounds) {
     RunFar("Cylinder", Cylinders(), 3201);
 }
 
-TEST(Cylinder, SpawnedRaysNeverHitAgainNearTheirOrigin) {
+EXERCISE_TEST(Ex3_25_Cylinder, SpawnedRaysNeverHitAgainNearTheirOrigin) {
     RunSpawn("Cylinder", Cylinders(), 3202);
 }
 
-TEST(Cylinder, ReverseOrientationFlipsNormalAndItsDerivatives) {
+EXERCISE_TEST(Ex3_25_Cylinder, ReverseOrientationFlipsNormalAndItsDerivatives) {
     RunReverse(Cylinders(), 3203);
 }
 
-TEST(Cylinder, FarRootWhenTheNearOneIsCut) {
+EXERCISE_TEST(Ex3_25_Cylinder, FarRootWhenTheNearOneIsCut) {
     // Through the missing wedge (phi from 270 to 360 degrees), through the
     // open ends, and from inside: the oracle must find the far root, and
     // lrt must agree.
@@ -50,50 +52,53 @@ TEST(Cylinder, FarRootWhenTheNearOneIsCut) {
     CheckFarRoots(def, rays);
 }
 
-TEST(Cylinder, SpecialRays) {
+EXERCISE_TEST(Ex3_25_Cylinder, SpecialRays) {
     lrt::Transform id;
-    lrt::Cylinder c(&id, &id, false, 1, -1, 1, 360);
-    lrt::Float tHit = 7;
-    lrt::SurfaceInteraction si;
+    QTarget c = Target(CylinderDef(1, -1, 1, 360, "cylinder"), id, false);
     // Parallel to the axis, inside or outside: the quadratic vanishes.
     for (lrt::Point3f o : {lrt::Point3f(0, 0, -5), lrt::Point3f(0.5f, 0.2f, 5),
                            lrt::Point3f(2, 0, -5)})
         for (lrt::Float dz : {1.0f, -1.0f}) {
             lrt::Ray r(o, lrt::Vector3f(0, 0, dz));
-            EXPECT_FALSE(c.Intersect(r, &tHit, &si)) << r;
-            EXPECT_FALSE(c.IntersectP(r)) << r;
+            lrt::ShapeHit h = Ask(c, r, 7);
+            EXPECT_FALSE(h.hit) << r;
+            EXPECT_FALSE(h.hitP) << r;
+            EXPECT_EQ(h.tHit, 7) << r;
         }
     // Along the surface itself: either answer, but no NaN.
-    if (c.Intersect(lrt::Ray(lrt::Point3f(1, 0, -5), lrt::Vector3f(0, 0, 1)),
-                    &tHit, &si)) {
-        EXPECT_FALSE(si.n.HasNaNs());
-        EXPECT_FALSE(std::isnan(tHit));
+    lrt::ShapeHit along =
+        Ask(c, lrt::Ray(lrt::Point3f(1, 0, -5), lrt::Vector3f(0, 0, 1)));
+    if (along.hit) {
+        EXPECT_FALSE(along.isect.n.HasNaNs());
+        EXPECT_FALSE(std::isnan(along.tHit));
     }
     // From the axis, perpendicular to it: t is the radius over |d|, the
     // normal points outward although the ray comes from inside.
-    ASSERT_TRUE(c.Intersect(
-        lrt::Ray(lrt::Point3f(0, 0, 0.3f), lrt::Vector3f(0, -2, 0)), &tHit,
-        &si));
-    EXPECT_NEAR(tHit, 0.5, 1e-6);
-    EXPECT_NEAR(si.n.y, -1, 1e-6);
-    EXPECT_NEAR(si.uv.x, 0.75, 1e-6);
-    EXPECT_NEAR(si.uv.y, 0.65, 1e-6);
+    lrt::ShapeHit h =
+        Ask(c, lrt::Ray(lrt::Point3f(0, 0, 0.3f), lrt::Vector3f(0, -2, 0)));
+    ASSERT_TRUE(h.hit);
+    EXPECT_NEAR(h.tHit, 0.5, 1e-6);
+    EXPECT_NEAR(h.isect.n.y, -1, 1e-6);
+    EXPECT_NEAR(h.isect.uv.x, 0.75, 1e-6);
+    EXPECT_NEAR(h.isect.uv.y, 0.65, 1e-6);
     // The seam at phi = 2 pi has no crack.
     int seamHits = 0;
-    for (int i = 1; i <= 1000; ++i) {
+    const int seamRays = lrt::calls::Cases(1000, 50);
+    for (int i = 1; i <= seamRays; ++i) {
         lrt::Float y = -lrt::Float(i) * lrt::Float(1e-9);
-        lrt::Ray r(lrt::Point3f(3, y, 0.1f), lrt::Vector3f(-1, 0, 0));
-        if (c.Intersect(r, &tHit, &si)) {
+        lrt::ShapeHit s =
+            Ask(c, lrt::Ray(lrt::Point3f(3, y, 0.1f), lrt::Vector3f(-1, 0, 0)));
+        if (s.hit) {
             ++seamHits;
-            EXPECT_GT(si.uv.x, 0.99f);
+            EXPECT_GT(s.isect.uv.x, 0.99f);
         }
     }
-    EXPECT_EQ(seamHits, 1000);
+    EXPECT_EQ(seamHits, seamRays);
     // tMax just before and just after the hit.
-    EXPECT_FALSE(c.IntersectP(
-        lrt::Ray(lrt::Point3f(-5, 0, 0), lrt::Vector3f(1, 0, 0), 3.99f)));
-    EXPECT_TRUE(c.IntersectP(
-        lrt::Ray(lrt::Point3f(-5, 0, 0), lrt::Vector3f(1, 0, 0), 4.01f)));
+    EXPECT_FALSE(Ask(c, lrt::Ray(lrt::Point3f(-5, 0, 0), lrt::Vector3f(1, 0, 0),
+                                 3.99f)).hitP);
+    EXPECT_TRUE(Ask(c, lrt::Ray(lrt::Point3f(-5, 0, 0), lrt::Vector3f(1, 0, 0),
+                                4.01f)).hitP);
 }
 
 TEST(Cylinder, ObjectBound) {
@@ -126,6 +131,9 @@ TEST(Cylinder, BadInput) {
         make(&id, &id, 1, -1, 1, -20), make(&id, &id, 1, -1, 1, nan)});
     EXPECT_THROW(make(nullptr, &id, 1, -1, 1, 360)(), std::invalid_argument);
     EXPECT_THROW(make(&id, nullptr, 1, -1, 1, 360)(), std::invalid_argument);
+}
+
+EXERCISE_TEST(Ex3_25_Cylinder, BadRaysHitNothing) {
     ExpectNoHitOnBadRays(CylinderDef(1, -1, 1, 360, "cylinder"));
     ExpectNoHitOnBadRays(CylinderDef(1, -0.5, 1, 200, "partial cylinder"));
 }

@@ -1,7 +1,10 @@
 // Tests of Paraboloid against the long-double oracle of quadrics_oracle.h:
 // random rays in object space and through affine transformations,
 // paraboloids far from the origin, spawned rays, the far root, rays through
-// the tip and along the axis, the bound, the orientation and bad input.
+// the tip and along the axis, the bound, the orientation and bad input. The
+// tests that intersect belong to exercise ex-3.25 (suite Ex3_25_Paraboloid)
+// and reach the shape through its exercise call; those that only construct
+// it are suite Paraboloid.
 #include "quadrics_oracle.h"
 
 #include <cmath>
@@ -21,23 +24,23 @@ std::vector<QuadricDef> Paraboloids() {
 
 }  // namespace
 
-TEST(Paraboloid, AgreesWithLongDoubleOracle) {
+EXERCISE_TEST(Ex3_25_Paraboloid, AgreesWithLongDoubleOracle) {
     RunOracle("Paraboloid", Paraboloids(), 3400);
 }
 
-TEST(Paraboloid, FarFromTheOriginWithinTheErrorBounds) {
+EXERCISE_TEST(Ex3_25_Paraboloid, FarFromTheOriginWithinTheErrorBounds) {
     RunFar("Paraboloid", Paraboloids(), 3401);
 }
 
-TEST(Paraboloid, SpawnedRaysNeverHitAgainNearTheirOrigin) {
+EXERCISE_TEST(Ex3_25_Paraboloid, SpawnedRaysNeverHitAgainNearTheirOrigin) {
     RunSpawn("Paraboloid", Paraboloids(), 3402);
 }
 
-TEST(Paraboloid, ReverseOrientationFlipsNormalAndItsDerivatives) {
+EXERCISE_TEST(Ex3_25_Paraboloid, ReverseOrientationFlipsNormalAndItsDerivatives) {
     RunReverse(Paraboloids(), 3403);
 }
 
-TEST(Paraboloid, FarRootWhenTheNearOneIsCut) {
+EXERCISE_TEST(Ex3_25_Paraboloid, FarRootWhenTheNearOneIsCut) {
     QuadricDef def = ParaboloidDef(1, 0.2, 1, 270, "cut paraboloid");
     std::vector<QRay> rays = {
         // Over the rim, into the open top, to the far wall.
@@ -50,23 +53,23 @@ TEST(Paraboloid, FarRootWhenTheNearOneIsCut) {
     CheckFarRoots(def, rays);
 }
 
-TEST(Paraboloid, RaysThroughTheTipAndAlongTheAxis) {
+EXERCISE_TEST(Ex3_25_Paraboloid, RaysThroughTheTipAndAlongTheAxis) {
     QuadricDef def = ParaboloidDef(1, 0, 1, 360, "paraboloid");
     Geom g(def);
     lrt::Transform id;
     LAffine I(id);
-    auto par = MakeShape(def, &id, &id, false);
-    Rng rng(3404);
+    QTarget par = Target(def, id, false);
+    Rng rng(lrt::calls::Seed(3404));
     QStats st;
-    for (int i = 0; i < 2000; ++i) {
+    for (int i = 0, n = lrt::calls::Cases(2000, 100); i < n; ++i) {
         L3 o = (LD)rng.U(0.5, 4) * RandomDir(rng);
         lrt::Ray wr = ToLrtRay(QRay{o, (LD)rng.U(0.5, 2) * (L3(0, 0, 0) - o)});
-        CheckRay(*par, g, I, false, wr, "through the tip", true, st);
-        lrt::Float t;
-        lrt::SurfaceInteraction si;
-        if (par->Intersect(wr, &t, &si)) {
-            EXPECT_FALSE(si.n.HasNaNs()) << wr;
-            EXPECT_TRUE(std::isfinite(si.uv.x) && std::isfinite(si.uv.y));
+        CheckRay(par, g, I, false, wr, "through the tip", true, st);
+        lrt::ShapeHit h = Ask(par, wr);
+        if (h.hit) {
+            EXPECT_FALSE(h.isect.n.HasNaNs()) << wr;
+            EXPECT_TRUE(std::isfinite(h.isect.uv.x) &&
+                        std::isfinite(h.isect.uv.y));
         }
     }
     QReport("Paraboloid through the tip", st);
@@ -76,10 +79,10 @@ TEST(Paraboloid, RaysThroughTheTipAndAlongTheAxis) {
     // limit at the tip is -z (dpdu x dpdv points away from the inside).
     for (lrt::Float dz : {1.0f, -1.0f}) {
         lrt::Ray r(lrt::Point3f(0, 0, dz > 0 ? -2 : 5), lrt::Vector3f(0, 0, dz));
-        lrt::Float t = -1;
-        lrt::SurfaceInteraction si;
-        ASSERT_TRUE(par->Intersect(r, &t, &si)) << r;
-        EXPECT_NEAR(t, dz > 0 ? 2 : 5, 1e-5) << r;
+        lrt::ShapeHit h = Ask(par, r);
+        const lrt::SurfaceHit &si = h.isect;
+        ASSERT_TRUE(h.hit) << r;
+        EXPECT_NEAR(h.tHit, dz > 0 ? 2 : 5, 1e-5) << r;
         EXPECT_LE(std::abs(si.p.z), si.pError.z + 1e-6f) << r;
         EXPECT_FALSE(si.n.HasNaNs()) << r << " n " << si.n;
         if (!si.n.HasNaNs()) {
@@ -87,13 +90,12 @@ TEST(Paraboloid, RaysThroughTheTipAndAlongTheAxis) {
         }
     }
     // Parallel to the axis off it: one root, at z = rho^2 zMax / r^2.
-    lrt::Float t;
-    lrt::SurfaceInteraction si;
-    ASSERT_TRUE(par->Intersect(
-        lrt::Ray(lrt::Point3f(0.6f, 0, -1), lrt::Vector3f(0, 0, 3)), &t, &si));
-    EXPECT_NEAR(si.p.z, 0.36f, 1e-6f);
-    EXPECT_NEAR(t, 1.36f / 3, 1e-6f);
-    EXPECT_NEAR(si.uv.y, 0.36f, 1e-6f);
+    lrt::ShapeHit h =
+        Ask(par, lrt::Ray(lrt::Point3f(0.6f, 0, -1), lrt::Vector3f(0, 0, 3)));
+    ASSERT_TRUE(h.hit);
+    EXPECT_NEAR(h.isect.p.z, 0.36f, 1e-6f);
+    EXPECT_NEAR(h.tHit, 1.36f / 3, 1e-6f);
+    EXPECT_NEAR(h.isect.uv.y, 0.36f, 1e-6f);
 }
 
 TEST(Paraboloid, ObjectBound) {
@@ -128,6 +130,9 @@ TEST(Paraboloid, BadInput) {
         make(&id, &id, 1, 0, 1, nan)});
     EXPECT_THROW(make(nullptr, &id, 1, 0, 1, 360)(), std::invalid_argument);
     EXPECT_THROW(make(&id, nullptr, 1, 0, 1, 360)(), std::invalid_argument);
+}
+
+EXERCISE_TEST(Ex3_25_Paraboloid, BadRaysHitNothing) {
     ExpectNoHitOnBadRays(ParaboloidDef(1, 0, 1, 360, "paraboloid"));
     ExpectNoHitOnBadRays(ParaboloidDef(1, 0.3, 1, 250, "partial paraboloid"));
 }

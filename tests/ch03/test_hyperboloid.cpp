@@ -32,69 +32,6 @@ std::vector<QuadricDef> Hyperboloids() {
                            "hyperboloid that is a cone")};
 }
 
-// A hyperboloid and the cylinder or cone it equals, on the same rays: both
-// agree with the cylinder's or cone's oracle, and with each other (hit or
-// miss, t, p, n, uv, dpdu, dpdv, dndu and dndv) wherever the oracle is
-// certain.
-void CompareWithEquivalent(const QuadricDef &hyp, const QuadricDef &other,
-                           uint64_t seed) {
-    Geom g(other);
-    Rng rng(lrt::calls::Seed(seed));
-    const int rays = lrt::calls::Cases(10000, 100);
-    QStats stH, stO;
-    long compared = 0, bothHit = 0;
-    std::vector<QXf> xfs = Transforms();
-    for (const Affine &A :
-         {Affine::Make(D3(1, 1, 1), D3(0, 0, 1), 0, D3(0, 0, 0)), xfs[3].M}) {
-        lrt::Transform o2w = A.ToTransform();
-        LAffine M(o2w);
-        QTarget h = Target(hyp, o2w, false), o = Target(other, o2w, false);
-        for (int i = 0; i < rays; ++i) {
-            QRay r = RandomRay(rng, g, i);
-            lrt::Ray wr(ToP(M.Point(r.o)), ToV(M.Vector(r.d)),
-                        lrt::Float(r.tMax));
-            CheckRay(h, g, M, false, wr, hyp.name, !IsTangentKind(i), stH);
-            CheckRay(o, g, M, false, wr, other.name, !IsTangentKind(i), stO);
-            QOracle orc = Trace(g, ToObject(o.w2o, wr), (LD)wr.tMax);
-            if (orc.ambiguous) continue;
-            ++compared;
-            lrt::ShapeHit hh = Ask(h, wr), ho = Ask(o, wr);
-            const lrt::SurfaceHit &a = hh.isect, &b = ho.isect;
-            const lrt::Float tH = hh.tHit, tO = ho.tHit;
-            EXPECT_EQ(hh.hit, ho.hit) << wr;
-            if (!hh.hit || !ho.hit) continue;
-            ++bothHit;
-            LD tol = 4 * orc.posErr / len3(ToL(wr.d)) + 1e-5L * orc.t;
-            EXPECT_LE(std::abs(tH - tO), tol) << wr;
-            LD pTol = 4 * (len3(ToL(a.pError)) + len3(ToL(b.pError))) +
-                      8 * M.norm * orc.posErr + 1e-5L * M.norm * g.rRef;
-            EXPECT_LE(dist3(ToL(a.p), ToL(b.p)), pTol) << wr;
-            EXPECT_LE(dist3(ToL(a.n), ToL(b.n)), 1e-3) << wr;
-            if (orc.nearPole) continue;
-            EXPECT_NEAR(a.uv.x, b.uv.x, 1e-3) << wr;
-            EXPECT_NEAR(a.uv.y, b.uv.y, 1e-3) << wr;
-            // Relative to the size of the pair of derivatives (a cone's
-            // dndv is zero).
-            auto close = [&](L3 x, L3 y, LD scale) {
-                return dist3(x, y) <= 1e-3L * scale;
-            };
-            LD sp = len3(ToL(b.dpdu)) + len3(ToL(b.dpdv));
-            LD sn = len3(ToL(b.dndu)) + len3(ToL(b.dndv));
-            EXPECT_TRUE(close(ToL(a.dpdu), ToL(b.dpdu), sp)) << wr;
-            EXPECT_TRUE(close(ToL(a.dpdv), ToL(b.dpdv), sp)) << wr;
-            EXPECT_TRUE(close(ToL(a.dndu), ToL(b.dndu), sn))
-                << wr << ": " << a.dndu << " vs " << b.dndu;
-            EXPECT_TRUE(close(ToL(a.dndv), ToL(b.dndv), sn))
-                << wr << ": " << a.dndv << " vs " << b.dndv;
-        }
-    }
-    QReport(hyp.name + " (against " + other.name + "'s oracle)", stH);
-    QReport(other.name, stO);
-    EXPECT_EQ(stH.failures, 0);
-    EXPECT_EQ(stO.failures, 0);
-    EXPECT_GT(bothHit, compared / 10);
-}
-
 }  // namespace
 
 EXERCISE_TEST(Ex3_25_Hyperboloid, AgreesWithLongDoubleOracle) {

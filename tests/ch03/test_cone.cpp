@@ -82,7 +82,7 @@ EXERCISE_TEST(Ex3_25_Cone, RaysParallelToAGenerator) {
     QReport("Cone parallel to a generator", st);
     EXPECT_EQ(st.failures, 0);
     EXPECT_GT(exact, rays / 4);
-    EXPECT_GT(st.hits, rays / 8);
+    EXPECT_GT(st.hits, rays / 20);
     EXPECT_LE(st.bandMisses, st.rays / 100 + 2);
 }
 

@@ -44,6 +44,15 @@ void AddDisk(RenderScene *scene, const Transform &objectToWorld,
                                            innerRadius, phiMax),
                     albedo);
 }
+template <typename QuadricShape, typename... Parameters>
+void AddQuadric(RenderScene *scene, const Transform &objectToWorld,
+                const RGB &albedo, Parameters... parameters) {
+    const Transform *o2w = scene->AddTransform(objectToWorld);
+    const Transform *w2o = scene->AddTransform(Inverse(objectToWorld));
+    scene->AddShape(
+        std::make_shared<QuadricShape>(o2w, w2o, false, parameters...),
+        albedo);
+}
 std::string dataDir = "data";
 
 std::vector<std::shared_ptr<Primitive>> BunnyPrimitives(
@@ -117,6 +126,28 @@ Image Disks() {
     PinholeCamera camera = LookAtCamera(Point3f(0, -7, 4.2), Point3f(0, 0, 1),
                                         28, 1512, 810);
     return Render(scene, camera, TwoLights(3.5, Point3f(5, -4, 9), 8));
+}
+Image Quadrics() {
+    RenderScene scene;
+    AddDisk(&scene, Transform(), 0, 30, 0, 360, kFloor);
+    AddSphere(&scene, Translate(Vector3f(2.8, -1.6, 0.9)), 0.9, -0.9, 0.9,
+              360, kRed);
+    AddDisk(&scene, Translate(Vector3f(0, -1.6, 1)) * RotateX(35), 0, 0.9,
+            0.35, 360, kGreen);
+    AddQuadric<Paraboloid>(&scene, Translate(Vector3f(-2.8, -1.6, -0.25)),
+                           kBlue, 0.9, 0.25, 1.8, 360);
+    AddQuadric<Cylinder>(&scene,
+                         Translate(Vector3f(2.8, 1.8, 0)) * RotateZ(-45),
+                         kOrange, 0.8, 0, 1.7, 270);
+    AddQuadric<Cone>(&scene, Translate(Vector3f(0, 1.8, 0)) * RotateZ(-60),
+                     kBlue, 1.8, 0.9, 300);
+    AddQuadric<Hyperboloid>(&scene,
+                            Translate(Vector3f(-2.8, 1.8, 0)) * RotateZ(-45),
+                            kGreen, Point3f(0.55, -0.75, 0),
+                            Point3f(0.55, 0.75, 1.8), 270);
+    PinholeCamera camera = LookAtCamera(
+        Point3f(0, -10, 9), Point3f(-0.3, 0.3, 0.7), 28, 1872, 1000);
+    return Render(scene, camera, TwoLights(6, Point3f(7, -5, 11), 12));
 }
 Image Bunny() {
     RenderScene scene;
@@ -235,6 +266,7 @@ struct Figure {
 std::vector<Figure> Figures() {
     return {{"shapes-partial-spheres", PartialSpheres},
             {"shapes-disks", Disks},
+            {"shapes-quadrics", Quadrics},
             {"shapes-bunny", Bunny},
             {"render-falloff", FalloffComparison},
             {"render-clipping", Clipping},

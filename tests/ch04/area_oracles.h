@@ -8,6 +8,9 @@
 //   for a profile curve given with its derivatives, in any floating-point
 //   type (double, or long double where a reference must be far more precise
 //   than Float);
+// - the same quadrature, nested, of the area element |dp/du x dp/dv| of a
+//   parametric surface, for chapter 3's quadrics in their (u, v)
+//   parametrizations;
 // - a triangle's area from its three side lengths (Kahan's stable form of
 //   Heron's formula), for well-shaped triangles;
 // - a triangle's area from the areas of its projections onto the coordinate
@@ -22,6 +25,7 @@
 #include <cmath>
 #include <functional>
 #include <queue>
+#include <utility>
 
 namespace area_oracles {
 
@@ -165,6 +169,165 @@ Profile<T> TorusProfile(T R, T r) {
         return ProfilePoint<T>{R + r * std::cos(t), r * std::sin(t),
                                -r * std::sin(t), r * std::cos(t)};
     };
+}
+
+// The cylinder's profile as the graph rho = r, t = z.
+template <typename T>
+Profile<T> CylinderProfile(T r) {
+    return [r](T z) { return ProfilePoint<T>{r, z, 0, 1}; };
+}
+
+// The cone's profile as the graph rho = r (1 - z / h), t = z.
+template <typename T>
+Profile<T> ConeProfile(T r, T h) {
+    return [r, h](T z) { return ProfilePoint<T>{r * (1 - z / h), z, -r / h, 1}; };
+}
+
+// The paraboloid x^2 + y^2 = r^2 z / zMax: its profile as the graph
+// rho = r sqrt(z / zMax) (t = z; the slope is infinite at the tip), and by
+// the distance from the axis, z = zMax rho^2 / r^2 (t = rho).
+template <typename T>
+Profile<T> ParaboloidGraphProfile(T r, T zMax) {
+    return [r, zMax](T z) {
+        T f = r * std::sqrt(z / zMax);
+        return ProfilePoint<T>{f, z, r / (2 * std::sqrt(z * zMax)), 1};
+    };
+}
+template <typename T>
+Profile<T> ParaboloidRadialProfile(T r, T zMax) {
+    return [r, zMax](T rho) {
+        return ProfilePoint<T>{rho, zMax * rho * rho / (r * r), 1,
+                               2 * zMax * rho / (r * r)};
+    };
+}
+
+// The hyperboloid swept by the segment from (x1, y1, z1) to (x2, y2, z2):
+// its profile as the graph rho(z) = |(x, y)| of the segment's point at the
+// height z (which must differ at the two ends).
+template <typename T>
+Profile<T> HyperboloidGraphProfile(T x1, T y1, T z1, T x2, T y2, T z2) {
+    return [=](T z) {
+        T s = (z - z1) / (z2 - z1);
+        T x = x1 + s * (x2 - x1), y = y1 + s * (y2 - y1);
+        T dx = (x2 - x1) / (z2 - z1), dy = (y2 - y1) / (z2 - z1);
+        T rho = std::sqrt(x * x + y * y);
+        return ProfilePoint<T>{rho, z, (x * dx + y * dy) / rho, 1};
+    };
+}
+
+// The same profile parametrized along the segment, t in [0, 1]: exact for
+// bands so thin that heights between their ends are not representable.
+template <typename T>
+Profile<T> HyperboloidSegmentProfile(T x1, T y1, T z1, T x2, T y2, T z2) {
+    return [=](T t) {
+        T x = x1 + t * (x2 - x1), y = y1 + t * (y2 - y1);
+        T rho = std::sqrt(x * x + y * y);
+        return ProfilePoint<T>{rho, z1 + t * (z2 - z1),
+                               (x * (x2 - x1) + y * (y2 - y1)) / rho,
+                               z2 - z1};
+    };
+}
+
+// ---------------------------------------------------------------------------
+// Parametric surfaces
+
+// A point of a parametric surface p(u, v) with its partial derivatives.
+template <typename T>
+struct SurfacePoint {
+    T p[3], dpdu[3], dpdv[3];
+};
+template <typename T>
+using Surface = std::function<SurfacePoint<T>(T u, T v)>;
+
+// The area element |dp/du x dp/dv|.
+template <typename T>
+T AreaElement(const SurfacePoint<T> &s) {
+    const T *a = s.dpdu, *b = s.dpdv;
+    T c0 = a[1] * b[2] - a[2] * b[1], c1 = a[2] * b[0] - a[0] * b[2],
+      c2 = a[0] * b[1] - a[1] * b[0];
+    return std::sqrt(c0 * c0 + c1 * c1 + c2 * c2);
+}
+
+// The area of the surface over [0, 1]^2 in (u, v): the integral over u of
+// the integral over v of the area element. The inner integral is split at
+// vSplit, if it lies inside (0, 1), where the area element has a kink (a
+// cone's apex inside the segment that sweeps a hyperboloid).
+template <typename T>
+Integral<T> ParametricArea(const Surface<T> &surface, T relTol,
+                           T vSplit = -1) {
+    bool converged = true;
+    Integral<T> outer = Integrate<T>(
+        [&](T u) {
+            Integrand<T> element = [&](T v) {
+                return AreaElement(surface(u, v));
+            };
+            bool split = vSplit > 0 && vSplit < 1;
+            T ends[3] = {0, split ? vSplit : T(1), 1};
+            T value = 0;
+            for (int i = 0; i < (split ? 2 : 1); ++i) {
+                Integral<T> inner =
+                    Integrate<T>(element, ends[i], ends[i + 1], relTol);
+                converged = converged && inner.converged;
+                value += inner.value;
+            }
+            return value;
+        },
+        0, 1, relTol);
+    return {outer.value, converged && outer.converged};
+}
+
+// The (u, v) parametrizations of chapter 3's quadrics, phi = u phiMax.
+template <typename T>
+SurfacePoint<T> Revolve(T phiMax, T u, T x, T y, T z, T dx, T dy, T dz) {
+    // The point (x, y, z) of the profile at phi = 0 and its v-derivative,
+    // turned by phi about z; d/du turns it by a right angle and scales by
+    // phiMax.
+    T c = std::cos(u * phiMax), s = std::sin(u * phiMax);
+    T px = c * x - s * y, py = s * x + c * y;
+    return SurfacePoint<T>{{px, py, z},
+                           {-phiMax * py, phiMax * px, 0},
+                           {c * dx - s * dy, s * dx + c * dy, dz}};
+}
+
+template <typename T>
+Surface<T> CylinderSurface(T r, T zMin, T zMax, T phiMax) {
+    return [=](T u, T v) {
+        return Revolve<T>(phiMax, u, r, 0, zMin + v * (zMax - zMin), 0, 0,
+                          zMax - zMin);
+    };
+}
+
+template <typename T>
+Surface<T> ConeSurface(T r, T h, T phiMax) {
+    return [=](T u, T v) {
+        return Revolve<T>(phiMax, u, r * (1 - v), 0, v * h, -r, 0, h);
+    };
+}
+
+template <typename T>
+Surface<T> ParaboloidSurface(T r, T zMin, T zMax, T phiMax) {
+    return [=](T u, T v) {
+        T z = zMin + v * (zMax - zMin), rho = r * std::sqrt(z / zMax);
+        return Revolve<T>(phiMax, u, rho, 0, z,
+                          (zMax - zMin) * rho / (2 * z), 0, zMax - zMin);
+    };
+}
+
+template <typename T>
+Surface<T> HyperboloidSurface(T x1, T y1, T z1, T x2, T y2, T z2,
+                              T phiMax) {
+    return [=](T u, T v) {
+        return Revolve<T>(phiMax, u, x1 + v * (x2 - x1), y1 + v * (y2 - y1),
+                          z1 + v * (z2 - z1), x2 - x1, y2 - y1, z2 - z1);
+    };
+}
+
+// Where the segment's projection onto the xy plane passes nearest the
+// origin, as a parameter along the segment (-1 for a vertical segment).
+template <typename T>
+T NearestToAxis(T x1, T y1, T x2, T y2) {
+    T dx = x2 - x1, dy = y2 - y1, d2 = dx * dx + dy * dy;
+    return d2 > 0 ? -(x1 * dx + y1 * dy) / d2 : T(-1);
 }
 
 // ---------------------------------------------------------------------------

@@ -1,8 +1,9 @@
 // Chapter 4's exercise calls (tests/calls/calls.h): the tests of ex-4.9,
-// ex-4.10 and ex-4.11 reach Sphere::Area(), Disk::Area() and
-// Triangle::Area() only through these. Each call takes the arguments of the
-// shape's constructor as values and builds the shape itself (with the
-// inverse of the given transformation as WorldToObject).
+// ex-4.10, ex-4.11 and ex-4.12 reach Sphere::Area(), Disk::Area(),
+// Triangle::Area() and Paraboloid::Area() only through these. Each call
+// takes the arguments of the shape's constructor as values and builds the
+// shape itself (with the inverse of the given transformation as
+// WorldToObject).
 
 #ifndef LRT_TESTS_CH04_EXERCISE_CALLS_H
 #define LRT_TESTS_CH04_EXERCISE_CALLS_H
@@ -10,6 +11,7 @@
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/disk.h"
 #include "lrt/shapes/triangle.h"
+#include "lrt/shapes/paraboloid.h"
 #include "calls/calls.h"
 
 #include <memory>
@@ -42,6 +44,17 @@ inline Float DiskArea(Transform objectToWorld, bool reverseOrientation,
     return shape.Area();
 }
 
+// Area() of Paraboloid(&objectToWorld, &inverse, reverseOrientation,
+// radius, z0, z1, phiMax), called through the Shape interface.
+inline Float ParaboloidArea(Transform objectToWorld, bool reverseOrientation,
+                            Float radius, Float z0, Float z1, Float phiMax) {
+    Transform worldToObject = Inverse(objectToWorld);
+    Paraboloid paraboloid(&objectToWorld, &worldToObject, reverseOrientation,
+                          radius, z0, z1, phiMax);
+    const Shape &shape = paraboloid;
+    return shape.Area();
+}
+
 // Area() of each triangle of the mesh that CreateTriangleMesh() makes of
 // the vertex indices (three per triangle) and positions, in order.
 inline std::vector<Float> TriangleMeshAreas(Transform objectToWorld,
@@ -65,6 +78,7 @@ inline std::vector<Float> TriangleMeshAreas(Transform objectToWorld,
 LRT_EXERCISE_CALL(SphereArea)
 LRT_EXERCISE_CALL(DiskArea)
 LRT_EXERCISE_CALL(TriangleMeshAreas)
+LRT_EXERCISE_CALL(ParaboloidArea)
 
 namespace lrt {
 namespace ex {

@@ -12,7 +12,9 @@
 // continuation ray from the hit point in the same direction.
 //
 // The tests that compare the estimates with Area() are public tests of the
-// chapter's exercises (Ex4_9_* sphere, Ex4_10_* disk, Ex4_11_* triangle).
+// chapter's exercises (Ex4_9_* sphere, Ex4_10_* disk, Ex4_11_* triangle,
+// Ex4_12_* paraboloid); those of the cylinder, the cone and the hyperboloid
+// call the book's Area().
 // The check of the estimator's constant and the test of wrong formulas
 // compare the estimates with areas known in closed form (or computed here in
 // double precision), call no Area() and belong to no exercise.
@@ -28,6 +30,10 @@
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/disk.h"
 #include "lrt/shapes/triangle.h"
+#include "lrt/shapes/cylinder.h"
+#include "lrt/shapes/cone.h"
+#include "lrt/shapes/paraboloid.h"
+#include "lrt/shapes/hyperboloid.h"
 
 #include "area_oracles.h"
 #include "exercise_calls.h"
@@ -38,7 +44,9 @@
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace lrt;
@@ -373,4 +381,153 @@ TEST(CauchyCrofton, RejectsWrongFormulas) {
     double area = area_oracles::HeronArea<double>(P[0], P[1], P[2]);
     EXPECT_LE(Deviation(area, et), kStandardErrors);
     EXPECT_GT(Deviation(2 * area, et), kStandardErrors);
+}
+
+// ---------------------------------------------------------------------------
+// The other quadrics, each under a random rigid motion: the lines see them
+// only through Intersect(). No line crosses a quadric more than twice. The
+// hyperboloids include a cylinder and a cone (a vertical segment, a segment
+// ending on the axis) and a segment that crosses the axis.
+
+namespace {
+
+struct CroftonQuadric {
+    std::string name;
+    std::unique_ptr<Transform> toWorld, toObject;
+    std::shared_ptr<Shape> shape;
+    // The paraboloid's constructor arguments, for its exercise call.
+    Float radius, z0, z1, phiMax;
+    CroftonEstimate e;
+};
+
+// The center and radius of a ball around the shape's world bound.
+void BoundingBall(const Shape &shape, Vec *center, double *radius) {
+    Bounds3f b = shape.WorldBound();
+    *center = {0.5 * (double(b.pMin.x) + b.pMax.x),
+               0.5 * (double(b.pMin.y) + b.pMax.y),
+               0.5 * (double(b.pMin.z) + b.pMax.z)};
+    double dx = double(b.pMax.x) - b.pMin.x, dy = double(b.pMax.y) - b.pMin.y,
+           dz = double(b.pMax.z) - b.pMin.z;
+    *radius = 0.5 * std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+const std::vector<CroftonQuadric> &CroftonQuadrics() {
+    static const std::vector<CroftonQuadric> quadrics = [] {
+        std::vector<CroftonQuadric> v;
+        std::mt19937_64 rng(0x5eed042b);
+        auto add = [&](std::string name, auto make) {
+            CroftonQuadric q;
+            q.name = name;
+            q.toWorld.reset(new Transform(RandomRigid(rng)));
+            q.toObject.reset(new Transform(Inverse(*q.toWorld)));
+            q.radius = q.z0 = q.z1 = q.phiMax = 0;
+            q.shape = make(q);
+            v.push_back(std::move(q));
+        };
+        add("cylinder", [](CroftonQuadric &q) {
+            return std::make_shared<Cylinder>(q.toWorld.get(),
+                                              q.toObject.get(), false, 1.2f,
+                                              -0.4f, 1.6f, 360);
+        });
+        add("partial cylinder", [](CroftonQuadric &q) {
+            return std::make_shared<Cylinder>(q.toWorld.get(),
+                                              q.toObject.get(), true, 0.7f,
+                                              1.5f, -1, 230);
+        });
+        add("cone", [](CroftonQuadric &q) {
+            return std::make_shared<Cone>(q.toWorld.get(), q.toObject.get(),
+                                          false, 2, 1.25f, 360);
+        });
+        add("partial flat cone", [](CroftonQuadric &q) {
+            return std::make_shared<Cone>(q.toWorld.get(), q.toObject.get(),
+                                          false, 0.3f, 1.5f, 300);
+        });
+        auto paraboloid = [](Float r, Float z0, Float z1, Float phi,
+                             bool ro) {
+            return [=](CroftonQuadric &q) {
+                q.radius = r, q.z0 = z0, q.z1 = z1, q.phiMax = phi;
+                return std::make_shared<Paraboloid>(
+                    q.toWorld.get(), q.toObject.get(), ro, r, z0, z1, phi);
+            };
+        };
+        add("paraboloid", paraboloid(1.3f, 0, 1.8f, 360, false));
+        add("paraboloid cut above its tip", paraboloid(1, 2, 0.6f, 260, true));
+        add("flat paraboloid", paraboloid(2, -0.5f, 0.25f, 360, false));
+        auto hyperboloid = [](Point3f p1, Point3f p2, Float phi) {
+            return [=](CroftonQuadric &q) {
+                return std::make_shared<Hyperboloid>(
+                    q.toWorld.get(), q.toObject.get(), false, p1, p2, phi);
+            };
+        };
+        add("hyperboloid", hyperboloid(Point3f(1, 0, -1), Point3f(0, 1, 1),
+                                       360));
+        add("partial hyperboloid",
+            hyperboloid(Point3f(0.5f, 0.8f, 1.2f), Point3f(-1.2f, 0.3f, -0.2f),
+                        280));
+        add("hyperboloid as cylinder",
+            hyperboloid(Point3f(0.6f, -0.8f, 0), Point3f(0.6f, -0.8f, 1.5f),
+                        360));
+        add("hyperboloid as cone",
+            hyperboloid(Point3f(1.4f, 0, 0), Point3f(0, 0, 1.1f), 320));
+        add("hyperboloid crossing the axis",
+            hyperboloid(Point3f(1, 0.5f, -1), Point3f(-0.5f, -0.25f, 1), 360));
+        for (size_t i = 0; i < v.size(); ++i) {
+            Vec center;
+            double R;
+            BoundingBall(*v[i].shape, &center, &R);
+            v[i].e = EstimateArea(*v[i].shape, center, 1.001 * R,
+                                  0x5eed0460 + i);
+        }
+        return v;
+    }();
+    return quadrics;
+}
+
+}  // namespace
+
+TEST(QuadricCrofton, CylindersConesHyperboloids) {
+    for (const CroftonQuadric &q : CroftonQuadrics())
+        if (q.name.find("paraboloid") == std::string::npos)
+            ExpectAgreement(q.shape->Area(), q.e, q.name);
+}
+
+EXERCISE_TEST(Ex4_12_ParaboloidCrofton, Paraboloids) {
+    for (const CroftonQuadric &q : CroftonQuadrics())
+        if (q.name.find("paraboloid") != std::string::npos)
+            ExpectAgreement(ex::ParaboloidArea(*q.toWorld, false, q.radius,
+                                               q.z0, q.z1, q.phiMax),
+                            q.e, q.name);
+}
+
+// The estimator rejects plausible wrong areas of the quadrics; the right
+// ones are computed here in double, not by Area().
+TEST(CauchyCrofton, RejectsWrongQuadricFormulas) {
+    const std::vector<CroftonQuadric> &q = CroftonQuadrics();
+    auto find = [&](const std::string &name) -> const CroftonQuadric & {
+        for (const CroftonQuadric &c : q)
+            if (c.name == name) return c;
+        throw std::logic_error("no quadric " + name);
+    };
+    // The cone of height 2 and radius 1.25: the slant height, not the
+    // height.
+    const CroftonEstimate &cone = find("cone").e;
+    double l = std::sqrt(4 + 1.25 * 1.25);
+    EXPECT_LE(Deviation(kPi * 1.25 * l, cone), kStandardErrors);
+    EXPECT_GT(Deviation(kPi * 1.25 * 2, cone), kStandardErrors);
+    // The paraboloid of radius 1.3 and height 1.8 with its tip: the slope
+    // factor, and the disk of its rim.
+    const CroftonEstimate &dish = find("paraboloid").e;
+    EXPECT_GT(Deviation(2 * kPi * 1.3 * 1.8 * 2 / 3, dish), kStandardErrors);
+    EXPECT_GT(Deviation(kPi * 1.3 * 1.3, dish), kStandardErrors);
+    // The skew hyperboloid: the distance from the axis integrated along the
+    // segment overcounts.
+    const CroftonEstimate &skew = find("hyperboloid").e;
+    double along = 0;  // integral of |(1 - v, v)| dv by the midpoint rule
+    const int n = 100000;
+    for (int i = 0; i < n; ++i) {
+        double s = (i + 0.5) / n;
+        along += std::hypot(1 - s, s) / n;
+    }
+    EXPECT_GT(Deviation(2 * kPi * std::sqrt(6.0) * along, skew),
+              kStandardErrors);
 }

@@ -10,22 +10,29 @@
 // Pappus's theorem.
 //
 // The tests that call Area() are public tests of the chapter's exercises
-// (suites Ex4_9_* for the sphere, Ex4_10_* for the disk); the tests of the
-// integrator and of its power to reject wrong formulas call no Area() and
-// belong to no exercise.
+// (suites Ex4_9_* for the sphere, Ex4_10_* for the disk, Ex4_12_* for the
+// paraboloid); the tests of the integrator and of its power to reject wrong
+// formulas call no Area() and belong to no exercise, and those of the
+// cylinder, the cone and the hyperboloid call the book's Area().
 
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/disk.h"
+#include "lrt/shapes/cylinder.h"
+#include "lrt/shapes/cone.h"
+#include "lrt/shapes/paraboloid.h"
+#include "lrt/shapes/hyperboloid.h"
 
 #include "area_oracles.h"
 #include "exercise_calls.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace lrt;
@@ -197,7 +204,19 @@ TEST(AreaQuadrature, ProfileDerivativesMatchFiniteDifferences) {
         {SphereGraphProfile(r), {-1.6, -0.9, 0.0, 0.4, 1.5}},
         {SpherePolarProfile(r), {0.1, 0.8, 1.6, 2.5, 3.0}},
         {DiskProfile(0.3), {0.2, 1.0, 2.0}},
-        {TorusProfile(3, 1), {0.0, 1.0, 2.0, 4.0}}};
+        {TorusProfile(3, 1), {0.0, 1.0, 2.0, 4.0}},
+        {area_oracles::CylinderProfile<double>(1.3), {-1.0, 0.5, 2.0}},
+        {area_oracles::ConeProfile<double>(1.3, 2.1), {0.1, 1.0, 2.0}},
+        {area_oracles::ParaboloidGraphProfile<double>(1.3, 2.1),
+         {0.1, 1.0, 2.0}},
+        {area_oracles::ParaboloidRadialProfile<double>(1.3, 2.1),
+         {0.0, 0.5, 1.3}},
+        {area_oracles::HyperboloidGraphProfile<double>(1, 0.5, -1, -0.3, 1.2,
+                                                       2),
+         {-0.9, 0.0, 0.7, 1.9}},
+        {area_oracles::HyperboloidSegmentProfile<double>(1, 0.5, -1, -0.3,
+                                                         1.2, 2),
+         {0.1, 0.5, 0.9}}};
     for (const auto &c : cases)
         for (double t : c.second) {
             ProfilePoint p = c.first(t);
@@ -294,5 +313,363 @@ TEST(AreaQuadrature, RejectsWrongFormulas) {
                                  ringArea),
               kTotalRelTol);
     EXPECT_GT(RelativeDifference(phir * (2.5 * 2.5 - 1.5 * 1.5), ringArea),
+              kTotalRelTol);
+}
+
+// ---------------------------------------------------------------------------
+// The other quadrics: the cylinder, the cone, the paraboloid and the
+// hyperboloid. Each Area() is compared with two integrals that know nothing
+// of the sections' closed forms: the nested quadrature of the area element
+// |dp/du x dp/dv| of the shape's (u, v) parametrization, and the
+// surface-of-revolution integral of its profile. The paraboloid's tests are
+// public tests of ex-4.12 (suite Ex4_12_*); the others call the book's
+// Area() directly, as no exercise writes it.
+
+namespace {
+
+// Random shapes per kind: the nested quadrature costs some 15 one-dimensional
+// integrals per shape.
+const int kQuadricCases = calls::Cases(400, 200);
+
+Transform &Identity() {
+    static Transform identity;
+    return identity;
+}
+
+using Surface = area_oracles::Surface<double>;
+
+Integral ParametricArea(const Surface &surface, double vSplit = -1) {
+    return area_oracles::ParametricArea<double>(surface, kQuadratureRelTol,
+                                                vSplit);
+}
+
+struct CylinderParams {
+    Float radius, z0, z1, phiMaxDegrees;
+};
+struct ConeParams {
+    Float height, radius, phiMaxDegrees;
+};
+struct ParaboloidParams {
+    Float radius, z0, z1, phiMaxDegrees;
+    // The heights the constructor keeps: ordered, clamped below at 0.
+    double zMin() const { return std::max(0.0, double(std::min(z0, z1))); }
+    double zMax() const { return double(std::max(z0, z1)); }
+};
+struct HyperboloidParams {
+    Point3f p1, p2;
+    Float phiMaxDegrees;
+};
+
+class QuadricSampler {
+  public:
+    explicit QuadricSampler(uint64_t seed) : shapes(seed), rng(seed + 1) {}
+    double Uniform(double a, double b) {
+        return std::uniform_real_distribution<double>(a, b)(rng);
+    }
+    // Heights in either order: the constructors must not care.
+    void MaybeSwap(Float &a, Float &b) {
+        if (Uniform(0, 1) < 0.5) std::swap(a, b);
+    }
+    // Height to width ratios from 1e-3 to 1e3: needles and dishes.
+    CylinderParams Cylinder() {
+        Float r = shapes.LogUniform(0.01, 100);
+        Float z0 = Float(Uniform(-5, 5) * r);
+        Float z1 = Float(z0 + r * shapes.LogUniform(1e-3, 1e3));
+        MaybeSwap(z0, z1);
+        return {r, z0, z1, shapes.PhiMaxDegrees()};
+    }
+    ConeParams Cone() {
+        Float r = shapes.LogUniform(0.01, 100);
+        return {Float(r * shapes.LogUniform(1e-3, 1e3)), r,
+                shapes.PhiMaxDegrees()};
+    }
+    ParaboloidParams Paraboloid() {
+        Float r = shapes.LogUniform(0.05, 20);
+        Float zMax = Float(r * shapes.LogUniform(1e-3, 1e3));
+        double c = Uniform(0, 1);
+        // With the tip (z0 = 0, or below 0 and clamped), or cut above it.
+        Float z0 = c < 0.3 ? 0 : c < 0.4 ? Float(-Uniform(0, 1) * zMax)
+                                         : Float(Uniform(0.001, 0.999) * zMax);
+        Float z1 = zMax;
+        MaybeSwap(z0, z1);
+        return {r, z0, z1, shapes.PhiMaxDegrees()};
+    }
+    // General segments, and on purpose the degenerate ones: vertical
+    // (a cylinder), ending on the axis (a cone), crossing the axis (a
+    // double cone) and nearly horizontal.
+    HyperboloidParams Hyperboloid(int kind) {
+        double s = shapes.LogUniform(0.1, 10);
+        auto coordinate = [&] { return Float(s * Uniform(-1, 1)); };
+        Point3f p1(coordinate(), coordinate(), coordinate());
+        Point3f p2(coordinate(), coordinate(), coordinate());
+        if (kind == 1) p2.x = p1.x, p2.y = p1.y;
+        if (kind == 2) p2.x = 0, p2.y = 0;
+        if (kind == 3) {
+            Float k = Float(Uniform(0.2, 3));
+            p2.x = -k * p1.x, p2.y = -k * p1.y;
+        }
+        if (kind == 4) p2.z = Float(p1.z + s * 1e-3 * Uniform(0.5, 1));
+        if (p1.z == p2.z || (p1.x == 0 && p1.y == 0 && p2.x == 0 && p2.y == 0))
+            return Hyperboloid(kind);
+        return {p1, p2, shapes.PhiMaxDegrees()};
+    }
+
+  private:
+    ShapeSampler shapes;
+    std::mt19937_64 rng;
+};
+
+Integral CylinderByParametrization(const CylinderParams &c) {
+    return ParametricArea(area_oracles::CylinderSurface<double>(
+        c.radius, c.z0, c.z1, ToRadians(c.phiMaxDegrees)));
+}
+Integral CylinderByProfile(const CylinderParams &c) {
+    return RevolutionArea(area_oracles::CylinderProfile<double>(c.radius),
+                          std::min(c.z0, c.z1), std::max(c.z0, c.z1),
+                          ToRadians(c.phiMaxDegrees));
+}
+Integral ConeByParametrization(const ConeParams &c) {
+    return ParametricArea(area_oracles::ConeSurface<double>(
+        c.radius, c.height, ToRadians(c.phiMaxDegrees)));
+}
+Integral ConeByProfile(const ConeParams &c) {
+    return RevolutionArea(
+        area_oracles::ConeProfile<double>(c.radius, c.height), 0, c.height,
+        ToRadians(c.phiMaxDegrees));
+}
+Integral ParaboloidByParametrization(const ParaboloidParams &p) {
+    return ParametricArea(area_oracles::ParaboloidSurface<double>(
+        p.radius, p.zMin(), p.zMax(), ToRadians(p.phiMaxDegrees)));
+}
+Integral ParaboloidByGraph(const ParaboloidParams &p) {
+    return RevolutionArea(
+        area_oracles::ParaboloidGraphProfile<double>(p.radius, p.zMax()),
+        p.zMin(), p.zMax(), ToRadians(p.phiMaxDegrees));
+}
+Integral ParaboloidByRadius(const ParaboloidParams &p) {
+    double rhoMin = p.radius * std::sqrt(p.zMin() / p.zMax());
+    return RevolutionArea(
+        area_oracles::ParaboloidRadialProfile<double>(p.radius, p.zMax()),
+        rhoMin, p.radius, ToRadians(p.phiMaxDegrees));
+}
+// The hyperboloid's integrals in long double: near its waist a nearly
+// horizontal segment is nearly tangent to the circles of latitude, and the
+// area element's cross product, or the profile's slope, cancels there by
+// the ratio of the segment's height to its length (down to 1e-4 here).
+Integral ToDouble(const area_oracles::Integral<long double> &i) {
+    return {double(i.value), i.converged};
+}
+Integral HyperboloidByParametrization(const HyperboloidParams &h) {
+    using LD = long double;
+    const Point3f &a = h.p1, &b = h.p2;
+    return ToDouble(area_oracles::ParametricArea<LD>(
+        area_oracles::HyperboloidSurface<LD>(a.x, a.y, a.z, b.x, b.y, b.z,
+                                             ToRadians(h.phiMaxDegrees)),
+        kQuadratureRelTol, area_oracles::NearestToAxis<LD>(a.x, a.y, b.x, b.y)));
+}
+// The profile by height; split where the segment passes nearest the axis,
+// where the profile of a segment that crosses the axis has a corner.
+Integral HyperboloidByProfile(const HyperboloidParams &h) {
+    using LD = long double;
+    const Point3f &a = h.p1, &b = h.p2;
+    area_oracles::Profile<LD> profile =
+        area_oracles::HyperboloidGraphProfile<LD>(a.x, a.y, a.z, b.x, b.y,
+                                                  b.z);
+    LD v = area_oracles::NearestToAxis<LD>(a.x, a.y, b.x, b.y);
+    LD zLo = std::min(a.z, b.z), zHi = std::max(a.z, b.z);
+    LD phi = ToRadians(h.phiMaxDegrees);
+    auto area = [&](LD z0, LD z1) {
+        return area_oracles::RevolutionArea<LD>(profile, z0, z1, phi,
+                                                kQuadratureRelTol);
+    };
+    if (!(v > 0 && v < 1)) return ToDouble(area(zLo, zHi));
+    LD zSplit = LD(a.z) + v * (LD(b.z) - LD(a.z));
+    area_oracles::Integral<LD> lo = area(zLo, zSplit), hi = area(zSplit, zHi);
+    return {double(lo.value + hi.value), lo.converged && hi.converged};
+}
+
+std::string Describe(const CylinderParams &c) {
+    return "cylinder r=" + std::to_string(c.radius) + " z=[" +
+           std::to_string(c.z0) + ", " + std::to_string(c.z1) +
+           "] phiMax=" + std::to_string(c.phiMaxDegrees);
+}
+std::string Describe(const ConeParams &c) {
+    return "cone h=" + std::to_string(c.height) +
+           " r=" + std::to_string(c.radius) +
+           " phiMax=" + std::to_string(c.phiMaxDegrees);
+}
+std::string Describe(const ParaboloidParams &p) {
+    return "paraboloid r=" + std::to_string(p.radius) + " z=[" +
+           std::to_string(p.z0) + ", " + std::to_string(p.z1) +
+           "] phiMax=" + std::to_string(p.phiMaxDegrees);
+}
+std::string Describe(const HyperboloidParams &h) {
+    auto point = [](const Point3f &p) {
+        return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) +
+               ", " + std::to_string(p.z) + ")";
+    };
+    return "hyperboloid " + point(h.p1) + " -> " + point(h.p2) +
+           " phiMax=" + std::to_string(h.phiMaxDegrees);
+}
+
+Float Area(const CylinderParams &c) {
+    return Cylinder(&Identity(), &Identity(), false, c.radius, c.z0, c.z1,
+                    c.phiMaxDegrees).Area();
+}
+Float Area(const ConeParams &c) {
+    return Cone(&Identity(), &Identity(), false, c.height, c.radius,
+                c.phiMaxDegrees).Area();
+}
+Float Area(const HyperboloidParams &h) {
+    return Hyperboloid(&Identity(), &Identity(), false, h.p1, h.p2,
+                       h.phiMaxDegrees).Area();
+}
+
+// Area() against the integrals, which must have converged.
+void ExpectMatches(Float area, const std::vector<Integral> &integrals,
+                   const std::string &what) {
+    for (const Integral &i : integrals) {
+        ASSERT_TRUE(i.converged) << what;
+        ASSERT_LE(RelativeDifference(area, i.value), kTotalRelTol)
+            << what << ": Area() " << area << ", quadrature " << i.value;
+    }
+}
+
+}  // namespace
+
+// The quadrics' parametrizations: their partial derivatives against central
+// differences (their profiles are in the table above).
+TEST(AreaQuadrature, QuadricPartialDerivativesMatchFiniteDifferences) {
+    const double h = 1e-6;
+    std::vector<Surface> surfaces = {
+        area_oracles::CylinderSurface<double>(1.3, -0.5, 2, 5),
+        area_oracles::ConeSurface<double>(1.3, 2.1, 4),
+        area_oracles::ParaboloidSurface<double>(1.3, 0.2, 2.1, 6),
+        area_oracles::HyperboloidSurface<double>(1, 0.5, -1, -0.3, 1.2, 2,
+                                                 5.5)};
+    for (const Surface &s : surfaces)
+        for (double u : {0.1, 0.45, 0.9})
+            for (double v : {0.1, 0.5, 0.9}) {
+                auto p = s(u, v);
+                auto u0 = s(u - h, v), u1 = s(u + h, v);
+                auto v0 = s(u, v - h), v1 = s(u, v + h);
+                for (int k = 0; k < 3; ++k) {
+                    EXPECT_NEAR(p.dpdu[k], (u1.p[k] - u0.p[k]) / (2 * h),
+                                1e-5);
+                    EXPECT_NEAR(p.dpdv[k], (v1.p[k] - v0.p[k]) / (2 * h),
+                                1e-5);
+                }
+            }
+}
+
+TEST(QuadricAreaQuadrature, Cylinders) {
+    QuadricSampler sampler(calls::Seed(0x5eed0404));
+    for (int i = 0; i < kQuadricCases; ++i) {
+        CylinderParams c = sampler.Cylinder();
+        ExpectMatches(Area(c),
+                      {CylinderByParametrization(c), CylinderByProfile(c)},
+                      Describe(c));
+    }
+}
+
+TEST(QuadricAreaQuadrature, Cones) {
+    QuadricSampler sampler(calls::Seed(0x5eed0405));
+    for (int i = 0; i < kQuadricCases; ++i) {
+        ConeParams c = sampler.Cone();
+        ExpectMatches(Area(c), {ConeByParametrization(c), ConeByProfile(c)},
+                      Describe(c));
+    }
+}
+
+EXERCISE_TEST(Ex4_12_ParaboloidQuadrature, MatchesThreeIntegrals) {
+    QuadricSampler sampler(calls::Seed(0x5eed0406));
+    for (int i = 0; i < kQuadricCases; ++i) {
+        ParaboloidParams p = sampler.Paraboloid();
+        Float area = ex::ParaboloidArea(Transform(), false, p.radius, p.z0,
+                                        p.z1, p.phiMaxDegrees);
+        ExpectMatches(area,
+                      {ParaboloidByParametrization(p), ParaboloidByGraph(p),
+                       ParaboloidByRadius(p)},
+                      Describe(p));
+    }
+}
+
+TEST(QuadricAreaQuadrature, Hyperboloids) {
+    QuadricSampler sampler(calls::Seed(0x5eed0407));
+    for (int i = 0; i < kQuadricCases; ++i) {
+        HyperboloidParams h = sampler.Hyperboloid(i % 5);
+        ExpectMatches(Area(h),
+                      {HyperboloidByParametrization(h),
+                       HyperboloidByProfile(h)},
+                      Describe(h));
+    }
+}
+
+// A vertical segment sweeps a cylinder, a segment ending on the axis a cone:
+// the hyperboloid's area must be theirs, to rounding, and both must match the
+// integrals.
+TEST(QuadricAreaQuadrature, HyperboloidAsCylinderAndCone) {
+    QuadricSampler sampler(calls::Seed(0x5eed0408));
+    for (int i = 0; i < kQuadricCases / 4; ++i) {
+        CylinderParams c = sampler.Cylinder();
+        Float hyperboloid =
+            Area(HyperboloidParams{Point3f(c.radius, 0, c.z0),
+                                   Point3f(c.radius, 0, c.z1),
+                                   c.phiMaxDegrees});
+        // The same cylinder, with its radius along another direction.
+        Float turned = Area(HyperboloidParams{
+            Point3f(Float(0.6) * c.radius, Float(0.8) * c.radius, c.z0),
+            Point3f(Float(0.6) * c.radius, Float(0.8) * c.radius, c.z1),
+            c.phiMaxDegrees});
+        ExpectMatches(hyperboloid, {CylinderByParametrization(c)},
+                      Describe(c));
+        ExpectMatches(turned, {CylinderByParametrization(c)}, Describe(c));
+        EXPECT_LE(RelativeDifference(hyperboloid, Area(c)), kAreaRelTol)
+            << Describe(c);
+
+        ConeParams k = sampler.Cone();
+        Float asCone = Area(HyperboloidParams{Point3f(k.radius, 0, 0),
+                                              Point3f(0, 0, k.height),
+                                              k.phiMaxDegrees});
+        Float upsideDown = Area(HyperboloidParams{
+            Point3f(0, 0, k.height), Point3f(0, k.radius, 0),
+            k.phiMaxDegrees});
+        ExpectMatches(asCone, {ConeByParametrization(k)}, Describe(k));
+        ExpectMatches(upsideDown, {ConeByParametrization(k)}, Describe(k));
+        EXPECT_LE(RelativeDifference(asCone, Area(k)), kAreaRelTol)
+            << Describe(k);
+    }
+}
+
+// Plausible wrong formulas must fail against the same oracles.
+TEST(AreaQuadrature, RejectsWrongQuadricFormulas) {
+    // A cone of height 2 and radius 1.5: without the slant, or the whole
+    // disk of its base.
+    ConeParams cone{2, 1.5, 360};
+    double coneArea = ConeByParametrization(cone).value;
+    double l = std::sqrt(2.0 * 2 + 1.5 * 1.5);
+    EXPECT_LE(RelativeDifference(kPi * 1.5 * l, coneArea), kTotalRelTol);
+    for (double wrong : {kPi * 1.5 * 2, 2 * kPi * 1.5 * l, kPi * 1.5 * 1.5})
+        EXPECT_GT(RelativeDifference(wrong, coneArea), kTotalRelTol) << wrong;
+
+    // A paraboloid with its tip: without the slope factor (phiMax int f dz),
+    // or its rim's disk.
+    ParaboloidParams dish{1.5, 0, 2, 360};
+    double dishArea = ParaboloidByParametrization(dish).value;
+    double flat = 2 * kPi * 1.5 * (2.0 / 3.0) * 2;  // 2 pi r (2/3) zMax
+    EXPECT_GT(RelativeDifference(flat, dishArea), kTotalRelTol);
+    EXPECT_GT(RelativeDifference(kPi * 1.5 * 1.5, dishArea), kTotalRelTol);
+
+    // A skew segment: the distance from the axis integrated along the
+    // segment's length overcounts; so does the cone of the asymptotes.
+    HyperboloidParams skew{Point3f(1, 0, -1), Point3f(0, 1, 1), 360};
+    double skewArea = HyperboloidByParametrization(skew).value;
+    EXPECT_LE(RelativeDifference(skewArea, HyperboloidByProfile(skew).value),
+              kTotalRelTol);
+    double dLength = std::sqrt(1 + 1 + 4.0);
+    Integral alongSegment = Integrate(
+        [](double v) { return std::hypot(1 - v, v); }, 0, 1);
+    EXPECT_GT(RelativeDifference(2 * kPi * dLength * alongSegment.value,
+                                 skewArea),
               kTotalRelTol);
 }

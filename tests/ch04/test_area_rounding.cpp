@@ -10,12 +10,18 @@
 // last place for Float = float triangles, a multiple of epsilon / sin(theta)
 // for Float = double).
 //
-// All of them are public tests of the chapter's exercises: Ex4_9_* for the
-// sphere, Ex4_10_* for the disk, Ex4_11_* for the triangle.
+// The tests of the sphere, the disk, the triangle and the paraboloid are
+// public tests of the chapter's exercises: Ex4_9_* for the sphere, Ex4_10_*
+// for the disk, Ex4_11_* for the triangle, Ex4_12_* for the paraboloid. Those
+// of the cylinder, the cone and the hyperboloid call the book's Area().
 
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/disk.h"
 #include "lrt/shapes/triangle.h"
+#include "lrt/shapes/cylinder.h"
+#include "lrt/shapes/cone.h"
+#include "lrt/shapes/paraboloid.h"
+#include "lrt/shapes/hyperboloid.h"
 
 #include "area_oracles.h"
 #include "exercise_calls.h"
@@ -281,4 +287,223 @@ EXERCISE_TEST(Ex4_11_TriangleRounding, IndependentOfVertexOrder) {
                 << "order " << k;
         }
     }
+}
+
+// ---------------------------------------------------------------------------
+// The other quadrics. References: the surface-of-revolution integral of each
+// shape's profile in long double, from the values the shape stores (the
+// paraboloid's heights ordered and clamped, phiMax in radians as the
+// constructor converts it). The paraboloid's tests are public tests of
+// ex-4.12; the others call the book's Area().
+
+namespace {
+
+// The bounds of the sections: the cylinder (three roundings), the cone (two
+// roundings and hypot, within an ulp), the paraboloid (gamma_20),
+// and the modest multiple of epsilon that the hyperboloid's code keeps to.
+constexpr int kCylinderGammas = 3, kConeGammas = 4, kParaboloidGammas = 20,
+              kHyperboloidGammas = 16;
+// Random quadrics per test.
+const int kQuadricRoundingCases = calls::Cases(4000, 2000);
+
+Transform &Identity() {
+    static Transform identity;
+    return identity;
+}
+
+// The phiMax, in radians, that the constructors store for phiMax = 360.
+LD FullTurn() { return LD(2 * Pi); }
+
+LD ProfileArea(const area_oracles::Profile<LD> &profile, LD t0, LD t1,
+               LD phiMax) {
+    area_oracles::Integral<LD> a = area_oracles::RevolutionArea<LD>(
+        profile, t0, t1, phiMax, kBandRelTol);
+    EXPECT_TRUE(a.converged) << "t in [" << double(t0) << ", " << double(t1)
+                             << "]";
+    return a.value;
+}
+
+// The stored paraboloid's area: zMin = max(min(z0, z1), 0), zMax =
+// max(z0, z1).
+LD StoredParaboloidArea(Float r, Float z0, Float z1) {
+    LD zMin = std::max(LD(0), LD(std::min(z0, z1))), zMax = std::max(z0, z1);
+    return ProfileArea(area_oracles::ParaboloidGraphProfile<LD>(r, zMax), zMin,
+                       zMax, FullTurn());
+}
+
+// The stored hyperboloid's area, by its profile along the segment (for a
+// band a few ulps high, long double cannot hold the heights in between),
+// split where the segment passes nearest the axis.
+LD StoredHyperboloidArea(const Point3f &a, const Point3f &b) {
+    area_oracles::Profile<LD> profile =
+        area_oracles::HyperboloidSegmentProfile<LD>(a.x, a.y, a.z, b.x, b.y,
+                                                    b.z);
+    LD v = area_oracles::NearestToAxis<LD>(a.x, a.y, b.x, b.y);
+    if (!(v > 0 && v < 1)) return ProfileArea(profile, 0, 1, FullTurn());
+    return ProfileArea(profile, 0, v, FullTurn()) +
+           ProfileArea(profile, v, 1, FullTurn());
+}
+
+Float HyperboloidArea(const Point3f &a, const Point3f &b) {
+    return Hyperboloid(&Identity(), &Identity(), false, a, b, 360).Area();
+}
+
+// pbrt-v3's form of the paraboloid's area, evaluated in Float, as the tests'
+// foil: right in exact arithmetic, it cancels for thin bands and flat
+// dishes.
+Float NaiveParaboloidArea(Float r, Float zMin, Float zMax) {
+    Float k = 4 * zMax / (r * r);
+    return (r * r * r * r * 2 * Pi / (12 * zMax * zMax)) *
+           (std::pow(k * zMax + 1, Float(1.5)) -
+            std::pow(k * zMin + 1, Float(1.5)));
+}
+
+std::string Text(const Point3f &p) {
+    return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
+           std::to_string(p.z) + ")";
+}
+
+}  // namespace
+
+TEST(QuadricRounding, CylindersAndConesWithinTheirBounds) {
+    std::mt19937_64 rng(calls::Seed(0x5eed0466));
+    std::uniform_real_distribution<double> U(0, 1);
+    for (int i = 0; i < kQuadricRoundingCases; ++i) {
+        Float r = Float(std::exp(-27.6 + 55.2 * U(rng)));  // 1e-12 .. 1e12
+        Float z0 = Float((2 * U(rng) - 1) * r * std::exp(-7 + 14 * U(rng)));
+        Float z1 = (i % 10 == 0) ? std::nextafter(z0, Float(0))
+                                 : Float(z0 + r * std::exp(-7 + 14 * U(rng)));
+        if (z0 == z1) continue;
+        Float cylinder =
+            Cylinder(&Identity(), &Identity(), false, r, z0, z1, 360).Area();
+        LD exact = ProfileArea(area_oracles::CylinderProfile<LD>(r),
+                               std::min(z0, z1), std::max(z0, z1),
+                               FullTurn());
+        ASSERT_LE(RelativeError(cylinder, exact), LD(gamma(kCylinderGammas)))
+            << "cylinder r=" << r << " z0=" << z0 << " z1=" << z1;
+
+        // Cones from needles to dishes, ratios 1e-6 to 1e6.
+        Float h = Float(r * std::exp(-13.8 + 27.6 * U(rng)));
+        Float cone = Cone(&Identity(), &Identity(), false, h, r, 360).Area();
+        LD coneExact = ProfileArea(area_oracles::ConeProfile<LD>(r, h), 0, h,
+                                   FullTurn());
+        ASSERT_LE(RelativeError(cone, coneExact), LD(gamma(kConeGammas)))
+            << "cone r=" << r << " h=" << h;
+    }
+}
+
+EXERCISE_TEST(Ex4_12_ParaboloidRounding, WithinGamma20OfStoredSurface) {
+    std::mt19937_64 rng(calls::Seed(0x5eed0467));
+    std::uniform_real_distribution<double> U(0, 1);
+    for (int i = 0; i < kQuadricRoundingCases; ++i) {
+        Float r = Float(std::exp(-27.6 + 55.2 * U(rng)));   // 1e-12 .. 1e12
+        Float zMax = Float(r * std::exp(-13.8 + 27.6 * U(rng)));  // 1e+-6 r
+        Float zMin = (i % 4 == 0) ? 0 : Float(U(rng) * zMax);
+        // One band in ten is a single unit in the last place high.
+        if (i % 10 == 1) zMin = std::nextafter(zMax, Float(0));
+        if (!(zMin < zMax)) continue;
+        Float area = ex::ParaboloidArea(Transform(), false, r, zMin, zMax, 360);
+        ASSERT_LE(RelativeError(area, StoredParaboloidArea(r, zMin, zMax)),
+                  LD(gamma(kParaboloidGammas)))
+            << "r=" << r << " zMin=" << zMin << " zMax=" << zMax;
+    }
+}
+
+// Bands a few units in the last place high and dishes up to a million
+// times wider than deep keep the bound; pbrt-v3's form, in Float, does not.
+EXERCISE_TEST(Ex4_12_ParaboloidRounding, ThinBandsAndFlatDishes) {
+    bool naiveFails = false;
+    auto check = [&](Float r, Float zMin, Float zMax) {
+        LD exact = StoredParaboloidArea(r, zMin, zMax);
+        Float area = ex::ParaboloidArea(Transform(), false, r, zMin, zMax, 360);
+        EXPECT_LE(RelativeError(area, exact), LD(gamma(kParaboloidGammas)))
+            << "r=" << r << " zMin=" << zMin << " zMax=" << zMax;
+        if (RelativeError(NaiveParaboloidArea(r, zMin, zMax), exact) >
+            100 * LD(gamma(kParaboloidGammas)))
+            naiveFails = true;
+    };
+    for (Float r : {Float(1), Float(0.3), Float(7)})
+        for (Float zMax : {Float(0.5), Float(2), Float(30)}) {
+            Float zMin = zMax;
+            for (int k = 1; k <= 64; k *= 2) {
+                for (int j = 0; j < k / 2 + 1; ++j)
+                    zMin = std::nextafter(zMin, Float(0));
+                check(r, zMin, zMax);
+            }
+        }
+    for (Float flatness = 1e-2f; flatness > 1e-7f; flatness /= 10)
+        for (Float r : {Float(1), Float(5e3)}) {
+            check(r, 0, r * flatness);
+            check(r, r * flatness / 2, r * flatness);
+        }
+    EXPECT_TRUE(naiveFails) << "the test cannot tell the naive formula";
+}
+
+// The constructor orders the heights and clamps them below at 0; Area()
+// reports the stored surface, in object space.
+EXERCISE_TEST(Ex4_12_ParaboloidRounding, ClampedSwappedAndObjectSpace) {
+    EXPECT_EQ(ex::ParaboloidArea(Transform(), false, 1.5f, 2, 0.5f, 200),
+              ex::ParaboloidArea(Transform(), false, 1.5f, 0.5f, 2, 200));
+    EXPECT_EQ(ex::ParaboloidArea(Transform(), false, 1.5f, -3, 2, 200),
+              ex::ParaboloidArea(Transform(), false, 1.5f, 0, 2, 200));
+    EXPECT_EQ(ex::ParaboloidArea(Transform(), false, 1.5f, 0.5f, 2, 200),
+              ex::ParaboloidArea(Scale(2, 3, 4), true, 1.5f, 0.5f, 2, 200));
+    LD exact = StoredParaboloidArea(1.5f, 0, 2);
+    EXPECT_LE(RelativeError(ex::ParaboloidArea(Transform(), false, 1.5f, 0, 2,
+                                               400),
+                            exact),
+              LD(gamma(kParaboloidGammas)));
+}
+
+// Random segments, and on purpose those near the degenerate cases: nearly
+// vertical (nearly a cylinder), passing the axis at a tiny distance (nearly
+// a cone), ending on or crossing the axis, nearly horizontal, and bands a
+// few units in the last place high. The naive difference G(t1) - G(t0) of
+// the antiderivative must fail on some of them.
+TEST(QuadricRounding, HyperboloidsNearTheDegenerateCases) {
+    std::mt19937_64 rng(calls::Seed(0x5eed0468));
+    std::uniform_real_distribution<double> U(-1, 1);
+    bool naiveFails = false;
+    for (int i = 0; i < kQuadricRoundingCases; ++i) {
+        double s = std::exp(6 * U(rng));
+        Point3f a(Float(s * U(rng)), Float(s * U(rng)), Float(s * U(rng)));
+        Point3f b(Float(s * U(rng)), Float(s * U(rng)), Float(s * U(rng)));
+        double tiny = std::exp(-12 + 6 * U(rng));
+        switch (i % 7) {
+        case 1: b.x = Float(a.x * (1 + tiny)), b.y = a.y; break;
+        case 2: b.x = Float(-2 * a.x), b.y = Float(-2 * a.y * (1 + tiny)); break;
+        case 3: b.x = 0, b.y = 0; break;
+        case 4: b.x = Float(-0.5 * a.x), b.y = Float(-0.5 * a.y); break;
+        case 5: b.z = Float(a.z + s * tiny); break;
+        case 6:
+            b.z = a.z;
+            for (int k = 0; k < 1 + i % 5; ++k)
+                b.z = std::nextafter(b.z, Float(1e30));
+            break;
+        }
+        if (a.z == b.z || (a.x == 0 && a.y == 0 && b.x == 0 && b.y == 0))
+            continue;
+        LD exact = StoredHyperboloidArea(a, b);
+        ASSERT_LE(RelativeError(HyperboloidArea(a, b), exact),
+                  LD(gamma(kHyperboloidGammas)))
+            << "case " << i % 7 << ": " << Text(a) << " -> " << Text(b);
+        // The naive difference: the antiderivative G(t) of the section at
+        // t = z - z*, in Float.
+        Float dx = b.x - a.x, dy = b.y - a.y, dz = b.z - a.z;
+        Float dxy2 = dx * dx + dy * dy;
+        if (dxy2 == 0) continue;
+        Float rho0 = std::abs(a.x * dy - a.y * dx) / std::sqrt(dxy2);
+        Float zStar = a.z - dz * (a.x * dx + a.y * dy) / dxy2;
+        Float kappa2 = dxy2 / (dz * dz), mu = std::sqrt(kappa2 * (1 + kappa2));
+        auto G = [&](Float t) {
+            return Float(0.5) * (t * std::sqrt(rho0 * rho0 + mu * mu * t * t) +
+                                 rho0 * rho0 / mu *
+                                     std::asinh(mu * t / rho0));
+        };
+        Float naive = 2 * Pi * (G(std::max(a.z, b.z) - zStar) -
+                                G(std::min(a.z, b.z) - zStar));
+        if (!(RelativeError(naive, exact) <= 100 * LD(gamma(16))))
+            naiveFails = true;
+    }
+    EXPECT_TRUE(naiveFails) << "the test cannot tell the naive difference";
 }

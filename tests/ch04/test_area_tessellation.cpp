@@ -7,10 +7,16 @@
 // Triangle::Area() in world space.
 //
 // The tests that call Area() are public tests of the chapter's exercises
-// (Ex4_9_* sphere, Ex4_10_* disk, Ex4_11_* triangle); the test of wrong
-// formulas calls no Area() and belongs to no exercise.
+// (Ex4_9_* sphere, Ex4_10_* disk, Ex4_11_* triangle, Ex4_12_* paraboloid);
+// the test of wrong formulas calls no Area() and belongs to no exercise, and
+// those of the cylinder, the cone and the hyperboloid call the book's
+// Area().
 
 #include "lrt/shapes/triangle.h"
+#include "lrt/shapes/cylinder.h"
+#include "lrt/shapes/cone.h"
+#include "lrt/shapes/paraboloid.h"
+#include "lrt/shapes/hyperboloid.h"
 
 #include "area_oracles.h"
 #include "exercise_calls.h"
@@ -20,6 +26,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -94,6 +101,43 @@ Parametrization RingMap(double h, double r, double ri, double phiMax) {
     };
 }
 
+// The other quadrics of chapter 3, mapped as in their (u, v) equations
+// (phi = u phiMax): the cylinder with z from zMin to zMax, the cone from its
+// base to its apex, the paraboloid with z from zMin to zMax, and the
+// hyperboloid along its segment, turned.
+Parametrization CylinderMap(double r, double zMin, double zMax,
+                            double phiMax) {
+    return [=](double u, double v) {
+        double phi = u * phiMax;
+        return Vec{r * std::cos(phi), r * std::sin(phi),
+                   zMin + v * (zMax - zMin)};
+    };
+}
+
+Parametrization ConeMap(double h, double r, double phiMax) {
+    return [=](double u, double v) {
+        double phi = u * phiMax, rho = r * (1 - v);
+        return Vec{rho * std::cos(phi), rho * std::sin(phi), v * h};
+    };
+}
+
+Parametrization ParaboloidMap(double r, double zMin, double zMax,
+                              double phiMax) {
+    return [=](double u, double v) {
+        double phi = u * phiMax, z = zMin + v * (zMax - zMin);
+        double rho = r * std::sqrt(z / zMax);
+        return Vec{rho * std::cos(phi), rho * std::sin(phi), z};
+    };
+}
+
+Parametrization HyperboloidMap(const Vec &p1, const Vec &p2, double phiMax) {
+    return [=](double u, double v) {
+        double phi = u * phiMax, c = std::cos(phi), s = std::sin(phi);
+        double x = p1.x + v * (p2.x - p1.x), y = p1.y + v * (p2.y - p1.y);
+        return Vec{c * x - s * y, s * x + c * y, p1.z + v * (p2.z - p1.z)};
+    };
+}
+
 // The grid points of an n x n tessellation, row by row (v outer).
 std::vector<Vec> GridPoints(const Parametrization &map, int n) {
     std::vector<Vec> p;
@@ -151,14 +195,27 @@ double RelativeDifference(double a, double b) {
 
 // The checks common to spheres and rings, given the areas A_N of the
 // shape's tessellations.
+// The errors are positive where inscribed triangles fall short of the
+// surface (a convex surface; for the flat ring the chords cut off the rim);
+// on a saddle, such as a hyperboloid, the sign is not known in advance, but
+// it must not change.
+enum class ErrorSign { Positive, Consistent };
+
 void CheckConvergence(const std::vector<double> &a, double area,
-                      const std::string &what) {
-    // The errors are positive (inscribed triangles fall short of a convex
-    // surface; for the flat ring the chords cut off the rim) and shrink by
-    // a factor of about 4 per level.
+                      const std::string &what,
+                      ErrorSign sign = ErrorSign::Positive) {
+    // The errors have the expected sign and shrink by a factor of about 4
+    // per level. On a saddle the coarsest grid (8 x 8 cells, 45 degrees of
+    // turn per cell for a whole turn) is not yet in that regime: a segment
+    // twisted by 90 degrees shrinks its error by 2.9 from N = 8 to 16, then
+    // by about 4; its ratios are checked from N = 16 on.
     for (int i = 0; i + 1 < kErrorRatioLevels; ++i) {
         double e0 = area - a[i], e1 = area - a[i + 1];
-        EXPECT_GT(e1, 0) << what << " level " << i + 1;
+        if (sign == ErrorSign::Positive) {
+            EXPECT_GT(e1, 0) << what << " level " << i + 1;
+        } else if (i == 0) {
+            continue;
+        }
         EXPECT_GE(e0 / e1, kMinErrorRatio) << what << " level " << i;
         EXPECT_LE(e0 / e1, kMaxErrorRatio) << what << " level " << i;
     }
@@ -357,4 +414,96 @@ EXERCISE_TEST(Ex4_11_TriangleMesh, TessellatedSphereUnderTransformations) {
                 << c.name;
         }
     }
+}
+
+// ---------------------------------------------------------------------------
+// The other quadrics. Their tessellations converge at second order like the
+// sphere's: the cylinder's, the cone's and the hyperboloid's grid lines of
+// constant u are straight segments of the surface, so only the turn
+// contributes to the error there; the paraboloid is curved both ways, and
+// its tip, where the grid's first row meets, is included on purpose.
+
+namespace {
+
+struct QuadricCase {
+    std::string name;
+    std::shared_ptr<Shape> shape;  // the book's shape, for Area()
+    ErrorSign sign;
+    std::vector<double> a;
+    // The paraboloid's parameters, for its exercise call.
+    Float radius = 0, z0 = 0, z1 = 0, phiMaxDegrees = 0;
+};
+
+Transform &Identity() {
+    static Transform identity;
+    return identity;
+}
+
+// Cylinders, cones, paraboloids (with their tip and cut above it, deep and
+// flat) and hyperboloids (skew, vertical, ending on the axis), with the
+// areas of their tessellations, computed once.
+const std::vector<QuadricCase> &QuadricCases() {
+    static const std::vector<QuadricCase> cases = [] {
+        std::vector<QuadricCase> v;
+        const Transform *I = &Identity();
+        auto add = [&](std::string name, std::shared_ptr<Shape> shape,
+                       const Parametrization &map, ErrorSign sign) {
+            v.push_back({name, shape, sign, TessellationSequence(map)});
+        };
+        struct C { Float r, z0, z1, phi; };
+        for (C c : {C{1.5f, -0.5f, 2, 360}, C{0.02f, 0, 30, 200},
+                    C{40, 1, 1.5f, 95}})
+            add("cylinder r=" + std::to_string(c.r),
+                std::make_shared<Cylinder>(I, I, false, c.r, c.z0, c.z1,
+                                           c.phi),
+                CylinderMap(c.r, c.z0, c.z1, ToRadians(c.phi)),
+                ErrorSign::Positive);
+        struct K { Float h, r, phi; };
+        for (K k : {K{2, 1.5f, 360}, K{50, 0.5f, 270}, K{0.01f, 3, 120}})
+            add("cone h=" + std::to_string(k.h) + " r=" + std::to_string(k.r),
+                std::make_shared<Cone>(I, I, false, k.h, k.r, k.phi),
+                ConeMap(k.h, k.r, ToRadians(k.phi)), ErrorSign::Positive);
+        for (C c : {C{1.5f, 0, 2, 360}, C{1, 0.5f, 3, 250},
+                    C{4, -1, 0.25f, 360}, C{0.5f, 2, 8, 140}}) {
+            Float zMin = std::max(std::min(c.z0, c.z1), Float(0));
+            Float zMax = std::max(c.z0, c.z1);
+            add("paraboloid r=" + std::to_string(c.r) + " z=[" +
+                    std::to_string(c.z0) + ", " + std::to_string(c.z1) + "]",
+                nullptr, ParaboloidMap(c.r, zMin, zMax, ToRadians(c.phi)),
+                ErrorSign::Positive);
+            QuadricCase &q = v.back();
+            q.radius = c.r, q.z0 = c.z0, q.z1 = c.z1, q.phiMaxDegrees = c.phi;
+        }
+        struct H { Vec p1, p2; Float phi; };
+        for (H h : {H{{1, 0, -1}, {0, 1, 1}, 360},
+                    H{{0.5, 0.25, 0}, {-1.5, 0.75, 0.5}, 300},
+                    H{{1, 1, 0}, {1, 1, 2}, 180},
+                    H{{2, 0, 0}, {0, 0, 1}, 360},
+                    H{{0.2, 0.1, 3}, {0.3, -0.4, -2}, 75}}) {
+            Point3f p1(Float(h.p1.x), Float(h.p1.y), Float(h.p1.z));
+            Point3f p2(Float(h.p2.x), Float(h.p2.y), Float(h.p2.z));
+            add("hyperboloid " + std::to_string(v.size()),
+                std::make_shared<Hyperboloid>(I, I, false, p1, p2, h.phi),
+                HyperboloidMap(h.p1, h.p2, ToRadians(h.phi)),
+                ErrorSign::Consistent);
+        }
+        return v;
+    }();
+    return cases;
+}
+
+}  // namespace
+
+TEST(QuadricAreaTessellation, ConvergesAtSecondOrder) {
+    for (const QuadricCase &c : QuadricCases())
+        if (c.shape) CheckConvergence(c.a, c.shape->Area(), c.name, c.sign);
+}
+
+EXERCISE_TEST(Ex4_12_ParaboloidTessellation, ConvergesAtSecondOrder) {
+    for (const QuadricCase &c : QuadricCases())
+        if (!c.shape)
+            CheckConvergence(c.a,
+                             ex::ParaboloidArea(Transform(), false, c.radius,
+                                                c.z0, c.z1, c.phiMaxDegrees),
+                             c.name, c.sign);
 }

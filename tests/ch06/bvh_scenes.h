@@ -1,7 +1,7 @@
 // Scenes, oracles and checks shared by the tests of BVHAccel (chapter 6)
 // and of FastBVHAccel (chapter 7, which includes this file as
-// "ch06/bvh_scenes.h"): random scenes of spheres, disks and triangles as
-// ex::Scene values; random rays; brute force over the primitives as the
+// "ch06/bvh_scenes.h"): random scenes of spheres, disks and triangles, and
+// of every shape of chapter 3 (the other quadrics too), as ex::Scene values; random rays; brute force over the primitives as the
 // oracle of the closest hit; the structure of a BVHAccel's tree; and the
 // degenerate scenes, each run with a set of accelerators (an AccelSet) that
 // the test chooses.
@@ -11,6 +11,11 @@
 #include "bvh_checks.h"
 #include "remote_bvh.h"
 #include "lrt/accelerators/bvh.h"
+#include "lrt/shapes/cone.h"
+#include "lrt/shapes/cylinder.h"
+#include "lrt/shapes/disk.h"
+#include "lrt/shapes/hyperboloid.h"
+#include "lrt/shapes/paraboloid.h"
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/triangle.h"
 
@@ -21,11 +26,14 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <random>
 #include <set>
 #include <sstream>
 #include <string>
+#include <typeinfo>
+#include <utility>
 #include <vector>
 
 namespace lrt_test {
@@ -59,9 +67,70 @@ inline Point3f RandomPoint(std::mt19937_64 &rng, const Point3f &c, double r) {
                    Float(c.z + U(rng, -r, r)));
 }
 
+// What a random scene holds: spheres, disks and triangles, or every shape of
+// chapter 3 (cylinders, cones, paraboloids and hyperboloids too). The first
+// draws exactly the scenes it always drew, so that the seeds of the tests
+// keep their scenes.
+enum class Shapes { SpheresDisksTriangles, All };
+
+// An object-to-world transformation at c: a random rotation, sometimes with
+// a scale that differs along the object's axes.
+inline Transform RandomPlacement(std::mt19937_64 &rng, const Point3f &c) {
+    Transform o2w = Translate(Vector3f(c)) *
+                    Rotate(Float(U(rng, 0, 360)), RandomDirection(rng));
+    if (rng() % 3 == 0)
+        o2w = o2w * Scale(Float(U(rng, 0.3, 2)), Float(U(rng, 0.3, 2)),
+                          Float(U(rng, 0.3, 2)));
+    return o2w;
+}
+
+// phiMax in degrees: the whole circle, or, with probability `partial`, part
+// of it (now and then more than 360, which the constructors clamp).
+inline Float RandomPhiMax(std::mt19937_64 &rng, double partial) {
+    if (U(rng, 0, 1) >= partial) return 360;
+    return rng() % 16 == 0 ? Float(U(rng, 360, 400)) : Float(U(rng, 20, 350));
+}
+
+// One of the four quadrics of "Other Quadrics" in chapter 3, of about the
+// given size, placed by a random transformation at c: with partial phiMax
+// half the time, z ranges that cut it, the ends given in either order, and
+// the special cases of the hyperboloid (its segment parallel to the axis, a
+// cylinder; or meeting the axis, a cone).
+inline void AddRandomQuadric(std::mt19937_64 &rng, Scene *scene, int kind,
+                             const Point3f &c, double size) {
+    Transform o2w = RandomPlacement(rng, c);
+    bool ro = rng() % 4 == 0;
+    Float phiMax = RandomPhiMax(rng, 0.5);
+    auto s = [&](double lo, double hi) { return Float(size * U(rng, lo, hi)); };
+    if (kind == 0) {
+        Float zMin = s(-1, 0.3), zMax = s(0.4, 1.5);
+        if (rng() % 2) std::swap(zMin, zMax);
+        scene->AddCylinder(o2w, Inverse(o2w), ro, s(0.2, 1), zMin, zMax,
+                           phiMax);
+    } else if (kind == 1) {
+        scene->AddCone(o2w, Inverse(o2w), ro, s(0.3, 2), s(0.2, 1.2), phiMax);
+    } else if (kind == 2) {
+        // z0 < 0 is clamped to 0, the paraboloid's tip.
+        Float z0 = rng() % 3 == 0 ? 0 : s(-0.5, 0.6), z1 = s(0.7, 2);
+        if (rng() % 2) std::swap(z0, z1);
+        scene->AddParaboloid(o2w, Inverse(o2w), ro, s(0.2, 1.2), z0, z1,
+                             phiMax);
+    } else {
+        Point3f p1(s(-1, 1), s(-1, 1), s(-1, -0.1));
+        Point3f p2(s(-1, 1), s(-1, 1), s(0.1, 1));
+        int special = int(rng() % 6);
+        if (special == 0) p2.x = p1.x, p2.y = p1.y;  // a cylinder
+        if (special == 1) p2.x = p2.y = 0;           // a cone, apex at p2
+        if (rng() % 2) std::swap(p1, p2);
+        scene->AddHyperboloid(o2w, Inverse(o2w), ro, p1, p2, phiMax);
+    }
+}
+
 // A random scene: clusters of small primitives and a few large ones, so
 // that the split methods produce trees of varied shapes.
-inline Scene RandomScene(std::mt19937_64 &rng) {
+inline Scene RandomScene(std::mt19937_64 &rng,
+                         Shapes shapes = Shapes::SpheresDisksTriangles) {
+    const bool all = shapes == Shapes::All;
     Scene scene;
     int n = 1 + int(rng() % 40);
     if (rng() % 8 == 0) n += int(rng() % 160);
@@ -72,17 +141,14 @@ inline Scene RandomScene(std::mt19937_64 &rng) {
     while (int(scene.prims.size()) < n) {
         Point3f c = RandomPoint(rng, centers[rng() % nClusters], 3);
         double size = rng() % 10 == 0 ? U(rng, 1, 4) : U(rng, 0.05, 1);
-        int kind = int(rng() % 3);
-        if (kind == 0) {
-            Transform o2w = Translate(Vector3f(c)) *
-                            Rotate(Float(U(rng, 0, 360)), RandomDirection(rng));
-            if (rng() % 3 == 0)
-                o2w = o2w * Scale(Float(U(rng, 0.3, 2)),
-                                  Float(U(rng, 0.3, 2)),
-                                  Float(U(rng, 0.3, 2)));
+        int kind = int(rng() % (all ? 7 : 3));
+        if (kind >= 3) {
+            AddRandomQuadric(rng, &scene, kind - 3, c, size);
+        } else if (kind == 0) {
+            Transform o2w = RandomPlacement(rng, c);
             Float r = Float(size);
             Float zMin = -r, zMax = r, phiMax = 360;
-            if (rng() % 4 == 0) {
+            if (rng() % (all ? 2 : 4) == 0) {
                 zMin = Float(U(rng, -1, 0.2)) * r;
                 zMax = Float(U(rng, 0.3, 1)) * r;
                 phiMax = Float(U(rng, 30, 360));
@@ -122,14 +188,32 @@ inline Scene RandomScene(std::mt19937_64 &rng) {
 
 // Rays start inside the scene's box (and so inside many nodes' boxes) or
 // outside it; some are parallel to coordinate planes, some have a finite
-// tMax.
+// tMax. With `fromInsideShapes`, a quarter of them start near the middle of
+// a random primitive's box, inside the shape if it is a sphere, a cylinder,
+// a cone or a paraboloid whose cuts leave it closed enough, where the far
+// root of a quadric decides.
 inline Ray RandomRay(std::mt19937_64 &rng, const Bounds3f &b,
-              const std::vector<std::shared_ptr<Primitive>> *prims = nullptr) {
+              const std::vector<std::shared_ptr<Primitive>> *prims = nullptr,
+              bool fromInsideShapes = false) {
     Vector3f diag = b.Diagonal();
     double r = 0.5 * std::max(diag.x, std::max(diag.y, diag.z)) + 1;
     Point3f c = b.pMin * Float(0.5) + b.pMax * Float(0.5);
     Point3f o = rng() % 2 ? RandomPoint(rng, c, r * 0.8)
                           : RandomPoint(rng, c, r * 2);
+    if (fromInsideShapes && prims && !prims->empty() && rng() % 4 == 0) {
+        // Not from a box that is flat on some axis: its middle lies in the
+        // plane of the flat triangles or disk inside it, and the distances
+        // to them are rounding error.
+        Bounds3f pb = (*prims)[rng() % prims->size()]->WorldBound();
+        Vector3f extent = pb.Diagonal();
+        if (IsFiniteBox(pb) && extent.x > 0 && extent.y > 0 && extent.z > 0) {
+            Float f[3];
+            for (Float &x : f) x = Float(U(rng, 0.3, 0.7));
+            o = Point3f(Lerp(f[0], pb.pMin.x, pb.pMax.x),
+                        Lerp(f[1], pb.pMin.y, pb.pMax.y),
+                        Lerp(f[2], pb.pMin.z, pb.pMax.z));
+        }
+    }
     Vector3f d;
     if (prims && !prims->empty() && rng() % 4 != 0) {
         // Aim at a point in a random primitive's box: many such rays hit.
@@ -183,9 +267,37 @@ inline Oracle BruteForce(const std::vector<std::shared_ptr<Primitive>> &prims,
     return o;
 }
 
-// Returns an empty string if the accelerator agrees with the oracle.
+// A primitive hit at the closest distance.
+inline const Primitive *ClosestPrimitive(const Oracle &o) {
+    for (const OracleHit &h : o.hits)
+        if (h.t == o.tMin) return h.prim;
+    return nullptr;
+}
+
+// The name of the shape of a primitive (a GeometricPrimitive's), for the
+// counts of hits per shape.
+inline std::string ShapeName(const Primitive *p) {
+    auto gp = dynamic_cast<const GeometricPrimitive *>(p);
+    const Shape *s = gp ? gp->GetShape() : nullptr;
+    if (!s) return "other";
+    if (dynamic_cast<const Sphere *>(s)) return "Sphere";
+    if (dynamic_cast<const Disk *>(s)) return "Disk";
+    if (dynamic_cast<const Triangle *>(s)) return "Triangle";
+    if (dynamic_cast<const Cylinder *>(s)) return "Cylinder";
+    if (dynamic_cast<const Cone *>(s)) return "Cone";
+    if (dynamic_cast<const Paraboloid *>(s)) return "Paraboloid";
+    if (dynamic_cast<const Hyperboloid *>(s)) return "Hyperboloid";
+    return "other";
+}
+
+// Returns an empty string if the accelerator agrees with the oracle. The
+// primitive reported must report the same distance to brute force. That
+// distance must be the closest, within kTieTolerance, or, if `exact`, the
+// closest exactly: a primitive hit nearer than the reported hit, even by
+// the last bit, must have been found (a shape accepts a hit nearer than
+// tMax, so the order in which an accelerator tests them cannot matter).
 inline std::string Compare(const Primitive &accel, const Ray &ray0,
-                    const Oracle &o) {
+                    const Oracle &o, bool exact = false) {
     std::ostringstream err;
     Ray ray = ray0;
     SurfaceInteraction si;
@@ -204,9 +316,11 @@ inline std::string Compare(const Primitive &accel, const Ray &ray0,
         else if (h->t != ray.tMax)
             err << "t = " << ray.tMax << " but the primitive reports "
                 << h->t;
-        else if (ray.tMax > o.tMin * (1 + kTieTolerance))
-            err << "t = " << ray.tMax << " but the closest hit is at "
-                << o.tMin;
+        else if (exact ? ray.tMax != o.tMin
+                       : ray.tMax > o.tMin * (1 + kTieTolerance))
+            err << "t = " << ray.tMax << " on a " << ShapeName(h->prim)
+                << " but the closest hit is at " << o.tMin << " on a "
+                << ShapeName(ClosestPrimitive(o));
     } else if (!(ray.tMax == ray0.tMax) &&
                !(std::isnan(ray.tMax) && std::isnan(ray0.tMax))) {
         err << "a miss changed tMax";
@@ -322,25 +436,32 @@ inline std::string Label(const std::string &kind, SplitMethod m, int leafSize) {
 // and every accelerator disagree on the closest hit (a sphere's error bound
 // rejects its nearer hit once tMax has shrunk to a farther one's, a defect
 // of Sphere::Intersect() whatever the code under test), and these seeds'
-// scenes have none.
-inline void RunRandomScenes(const AccelSet &set, uint64_t seed, int nScenes) {
+// scenes have none. With Shapes::All, the scenes hold every shape, a quarter of
+// the rays start inside shapes, the closest distance must be found exactly,
+// and each shape must be the closest hit of many rays.
+inline void RunRandomScenes(const AccelSet &set, uint64_t seed, int nScenes,
+                            Shapes shapes = Shapes::SpheresDisksTriangles) {
     std::mt19937_64 rng(seed);
     int failures = 0;
     int64_t rays = 0, hits = 0;
+    std::map<std::string, int64_t> closest;  // rays whose closest hit is of
+                                             // the shape
+    const bool all = shapes == Shapes::All;
     for (int sceneIndex = 0; sceneIndex < nScenes; ++sceneIndex) {
-        Scene scene = RandomScene(rng);
+        Scene scene = RandomScene(rng, shapes);
         std::vector<Accel> accels;
         for (int leafSize : kLeafSizes)
             for (Accel &a : set(scene, leafSize))
                 accels.push_back(std::move(a));
         if (::testing::Test::HasFatalFailure()) return;
         for (int r = 0; r < kRaysPerScene; ++r) {
-            Ray ray = RandomRay(rng, scene.bounds, &scene.prims);
+            Ray ray = RandomRay(rng, scene.bounds, &scene.prims, all);
             Oracle o = BruteForce(scene.prims, ray);
             ++rays;
             hits += !o.hits.empty();
+            if (!o.hits.empty()) ++closest[ShapeName(ClosestPrimitive(o))];
             for (const Accel &a : accels) {
-                std::string e = Compare(*a.accel, ray, o);
+                std::string e = Compare(*a.accel, ray, o, all);
                 if (!e.empty() && failures++ < kMaxFailuresReported)
                     ADD_FAILURE() << a.name << ", scene " << sceneIndex
                                   << " (" << scene.prims.size()
@@ -352,6 +473,17 @@ inline void RunRandomScenes(const AccelSet &set, uint64_t seed, int nScenes) {
     // The rays must actually exercise hits, and misses.
     EXPECT_GT(hits, rays / 5);
     EXPECT_LT(hits, rays * 9 / 10);
+    if (!all) return;
+    std::ostringstream counts;
+    for (const auto &[name, n] : closest) counts << " " << name << " " << n;
+    ::testing::Test::RecordProperty("closest_hits_per_shape", counts.str());
+    ::testing::Test::RecordProperty("rays", std::to_string(rays));
+    ::testing::Test::RecordProperty("hits", std::to_string(hits));
+    for (const char *name : {"Sphere", "Disk", "Triangle", "Cylinder", "Cone",
+                             "Paraboloid", "Hyperboloid"})
+        EXPECT_GT(closest[name], rays / 50)
+            << name << " is the closest hit of too few of " << rays
+            << " rays:" << counts.str();
 }
 
 // The degenerate scenes, each checked with the accelerators of a set.

@@ -23,6 +23,10 @@
 #include "lrt/core/slabtest.h"
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/disk.h"
+#include "lrt/shapes/cylinder.h"
+#include "lrt/shapes/cone.h"
+#include "lrt/shapes/paraboloid.h"
+#include "lrt/shapes/hyperboloid.h"
 #include "lrt/shapes/triangle.h"
 #include "calls/calls.h"
 
@@ -124,7 +128,18 @@ enum SceneItem : uint8_t {
     kMeshItem,            // GeometricPrimitives of a mesh's Triangles
     kOddBoundsItem,       // an ex::OddBoundsPrimitive
     kEmptyAggregateItem,  // a BVHAccel over no primitives
+    kCylinderItem,        // a GeometricPrimitive of a Cylinder
+    kConeItem,            // a GeometricPrimitive of a Cone
+    kParaboloidItem,      // a GeometricPrimitive of a Paraboloid
+    kHyperboloidItem,     // a GeometricPrimitive of a Hyperboloid
 };
+
+// The items that are one quadric (a QuadricValue) each.
+inline bool IsQuadricItem(uint8_t kind) {
+    return kind == kSphereItem || kind == kDiskItem || kind == kCylinderItem ||
+           kind == kConeItem || kind == kParaboloidItem ||
+           kind == kHyperboloidItem;
+}
 
 struct BoxValue {
     Bounds3f bounds;
@@ -132,12 +147,17 @@ struct BoxValue {
     LRT_FIELDS(bounds, solid)
 };
 
-// A sphere's or a disk's constructor arguments. args: a sphere's radius,
-// zMin, zMax and phiMax, or a disk's height, radius, innerRadius and phiMax.
+// A quadric's constructor arguments after its transformations and
+// reverseOrientation, in the constructor's order, the rest zero: a sphere's
+// radius, zMin, zMax and phiMax; a disk's height, radius, innerRadius and
+// phiMax; a cylinder's radius, zMin, zMax and phiMax; a cone's height,
+// radius and phiMax; a paraboloid's radius, z0, z1 and phiMax; a
+// hyperboloid's point1 (x, y, z), point2 (x, y, z) and phiMax.
+using QuadricArgs = std::array<Float, 7>;
 struct QuadricValue {
     Transform objectToWorld, worldToObject;
     bool reverseOrientation;
-    std::array<Float, 4> args;
+    QuadricArgs args;
     LRT_FIELDS(objectToWorld, worldToObject, reverseOrientation, args)
 };
 
@@ -206,8 +226,8 @@ inline void Get(Reader &r, BVHStats &s) {
 
 namespace direct {
 
-// The primitives of a sphere, a disk or a mesh; the transformations they
-// point to go into `transforms`.
+// The primitives of a quadric or a mesh; the transformations they point to
+// go into `transforms`.
 inline std::shared_ptr<Primitive> MakeQuadric(
     uint8_t kind, const QuadricValue &q,
     std::vector<std::shared_ptr<Transform>> *transforms) {
@@ -215,14 +235,38 @@ inline std::shared_ptr<Primitive> MakeQuadric(
     const Transform *toWorld = transforms->back().get();
     transforms->push_back(std::make_shared<Transform>(q.worldToObject));
     const Transform *toObject = transforms->back().get();
-    const std::array<Float, 4> &a = q.args;
+    const QuadricArgs &a = q.args;
+    const bool ro = q.reverseOrientation;
     std::shared_ptr<Shape> shape;
-    if (kind == kSphereItem)
-        shape = std::make_shared<Sphere>(
-            toWorld, toObject, q.reverseOrientation, a[0], a[1], a[2], a[3]);
-    else
-        shape = std::make_shared<Disk>(toWorld, toObject, q.reverseOrientation,
-                                       a[0], a[1], a[2], a[3]);
+    switch (kind) {
+    case kSphereItem:
+        shape = std::make_shared<Sphere>(toWorld, toObject, ro, a[0], a[1],
+                                         a[2], a[3]);
+        break;
+    case kDiskItem:
+        shape = std::make_shared<Disk>(toWorld, toObject, ro, a[0], a[1], a[2],
+                                       a[3]);
+        break;
+    case kCylinderItem:
+        shape = std::make_shared<Cylinder>(toWorld, toObject, ro, a[0], a[1],
+                                           a[2], a[3]);
+        break;
+    case kConeItem:
+        shape = std::make_shared<Cone>(toWorld, toObject, ro, a[0], a[1],
+                                       a[2]);
+        break;
+    case kParaboloidItem:
+        shape = std::make_shared<Paraboloid>(toWorld, toObject, ro, a[0],
+                                             a[1], a[2], a[3]);
+        break;
+    case kHyperboloidItem:
+        shape = std::make_shared<Hyperboloid>(
+            toWorld, toObject, ro, Point3f(a[0], a[1], a[2]),
+            Point3f(a[3], a[4], a[5]), a[6]);
+        break;
+    default:
+        throw std::invalid_argument("a scene item that is no quadric");
+    }
     return std::make_shared<GeometricPrimitive>(shape);
 }
 inline std::vector<std::shared_ptr<Primitive>> MakeMesh(
@@ -290,7 +334,7 @@ inline void MakeScene(const SceneValue &scene, bool log,
             const BoxValue &b = scene.boxes[next(&box, scene.boxes.size())];
             made.push_back(
                 std::make_shared<ex::BoxPrimitive>(b.bounds, b.solid));
-        } else if (kind == kSphereItem || kind == kDiskItem) {
+        } else if (IsQuadricItem(kind)) {
             made.push_back(MakeQuadric(
                 kind, scene.quadrics[next(&quadric, scene.quadrics.size())],
                 &kept->transforms));

@@ -46,15 +46,45 @@ class Scene {
     void AddSphere(const Transform &objectToWorld,
                    const Transform &worldToObject, bool reverseOrientation,
                    Float radius, Float zMin, Float zMax, Float phiMax) {
-        std::array<Float, 4> args = {radius, zMin, zMax, phiMax};
+        QuadricArgs args = {radius, zMin, zMax, phiMax};
         AddQuadric(kSphereItem,
                    {objectToWorld, worldToObject, reverseOrientation, args});
     }
     void AddDisk(const Transform &objectToWorld, const Transform &worldToObject,
                  bool reverseOrientation, Float height, Float radius,
                  Float innerRadius, Float phiMax) {
-        std::array<Float, 4> args = {height, radius, innerRadius, phiMax};
+        QuadricArgs args = {height, radius, innerRadius, phiMax};
         AddQuadric(kDiskItem,
+                   {objectToWorld, worldToObject, reverseOrientation, args});
+    }
+    void AddCylinder(const Transform &objectToWorld,
+                     const Transform &worldToObject, bool reverseOrientation,
+                     Float radius, Float zMin, Float zMax, Float phiMax) {
+        QuadricArgs args = {radius, zMin, zMax, phiMax};
+        AddQuadric(kCylinderItem,
+                   {objectToWorld, worldToObject, reverseOrientation, args});
+    }
+    void AddCone(const Transform &objectToWorld, const Transform &worldToObject,
+                 bool reverseOrientation, Float height, Float radius,
+                 Float phiMax) {
+        QuadricArgs args = {height, radius, phiMax};
+        AddQuadric(kConeItem,
+                   {objectToWorld, worldToObject, reverseOrientation, args});
+    }
+    void AddParaboloid(const Transform &objectToWorld,
+                       const Transform &worldToObject, bool reverseOrientation,
+                       Float radius, Float z0, Float z1, Float phiMax) {
+        QuadricArgs args = {radius, z0, z1, phiMax};
+        AddQuadric(kParaboloidItem,
+                   {objectToWorld, worldToObject, reverseOrientation, args});
+    }
+    void AddHyperboloid(const Transform &objectToWorld,
+                        const Transform &worldToObject,
+                        bool reverseOrientation, const Point3f &point1,
+                        const Point3f &point2, Float phiMax) {
+        QuadricArgs args = {point1.x, point1.y, point1.z, point2.x,
+                            point2.y, point2.z, phiMax};
+        AddQuadric(kHyperboloidItem,
                    {objectToWorld, worldToObject, reverseOrientation, args});
     }
     void AddTriangles(const std::vector<Point3f> &p,

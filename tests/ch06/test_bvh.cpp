@@ -1,7 +1,7 @@
 // Tests of chapter 6's bounding volume hierarchy, BVHAccel: the Middle and
 // EqualCounts split methods with several leaf sizes against a brute-force
 // loop over the primitives, on thousands of random scenes of spheres, disks
-// and triangles, traced without BVHAccel's own traversal (TreeWalker);
+// and triangles (and of every shape of chapter 3), traced without BVHAccel's own traversal (TreeWalker);
 // structure invariants of every tree built; degenerate inputs; Morton codes
 // against a bit-by-bit interleaving. (FastBVHAccel's tests are chapter 7's.)
 //
@@ -179,6 +179,18 @@ TEST(BVHRandomScenes, Middle) {
 }
 TEST(BVHRandomScenes, EqualCounts) {
     RunRandomScenes(Plain({SplitMethod::EqualCounts}), 604, kRandomScenes);
+}
+
+// Scenes of every shape of chapter 3: spheres, disks, triangles, cylinders,
+// cones, paraboloids and hyperboloids, partial and cut, under random
+// transformations, with rays from inside them.
+TEST(BVHRandomScenesOfAllShapes, Middle) {
+    RunRandomScenes(Plain({SplitMethod::Middle}), 623, kRandomScenes,
+                    Shapes::All);
+}
+TEST(BVHRandomScenesOfAllShapes, EqualCounts) {
+    RunRandomScenes(Plain({SplitMethod::EqualCounts}), 624, kRandomScenes,
+                    Shapes::All);
 }
 
 TEST(BVHDegenerate, NoPrimitives) {
@@ -379,6 +391,10 @@ EXERCISE_TEST(Ex6_5_SAH, RandomScenes) {
     RunRandomScenes(SAHSet, 601, kExerciseRandomScenes);
 }
 
+EXERCISE_TEST(Ex6_5_SAH, RandomScenesOfAllShapes) {
+    RunRandomScenes(SAHSet, 621, kExerciseRandomScenes, Shapes::All);
+}
+
 EXERCISE_TEST(Ex6_5_SAH, DegenerateScenes) {
     CheckDegenerateScenes(SAHSet);
 }
@@ -515,6 +531,10 @@ EXERCISE_TEST(Ex6_6_HLBVH, RandomScenes) {
     RunRandomScenes(HLBVHSet, 602, kExerciseRandomScenes);
 }
 
+EXERCISE_TEST(Ex6_6_HLBVH, RandomScenesOfAllShapes) {
+    RunRandomScenes(HLBVHSet, 622, kExerciseRandomScenes, Shapes::All);
+}
+
 EXERCISE_TEST(Ex6_6_HLBVH, DegenerateScenes) {
     CheckOnePrimitive(HLBVHSet);
     CheckDegenerateScenes(HLBVHSet);
@@ -556,6 +576,10 @@ EXERCISE_TEST(Ex6_6_HLBVH, PrimitivesAreInMortonOrder) {
 
 EXERCISE_TEST(Ex6_7_Traversal, RandomScenes) {
     RunRandomScenes(TraversalSet, 605, kExerciseRandomScenes);
+}
+
+EXERCISE_TEST(Ex6_7_Traversal, RandomScenesOfAllShapes) {
+    RunRandomScenes(TraversalSet, 625, kExerciseRandomScenes, Shapes::All);
 }
 
 EXERCISE_TEST(Ex6_7_Traversal, DegenerateScenes) {

@@ -85,6 +85,13 @@ EXERCISE_TEST(Ex7_8_FourBoxes, RandomScenes) {
         kExerciseRandomScenes / 3);
 }
 
+// The same with every shape of chapter 3, and rays from inside them.
+EXERCISE_TEST(Ex7_8_FourBoxes, RandomScenesOfAllShapes) {
+    RunRandomScenes(
+        Fast({SplitMethod::Middle, SplitMethod::EqualCounts}, false), 723,
+        kExerciseRandomScenes / 3, Shapes::All);
+}
+
 // A ray tests a primitive exactly when it enters the boxes above its leaf:
 // hollow boxes, which no ray hits, so that IntersectP() visits every leaf it
 // reaches; rays from inside and outside, in every octant, some parallel to
@@ -199,6 +206,11 @@ EXERCISE_TEST(Ex7_9_FourChildren, RandomScenes) {
                     kExerciseRandomScenes / 3);
 }
 
+EXERCISE_TEST(Ex7_9_FourChildren, RandomScenesOfAllShapes) {
+    RunRandomScenes(Fast(kAdoptedMethods, true), 724,
+                    kExerciseRandomScenes / 3, Shapes::All);
+}
+
 EXERCISE_TEST(Ex7_9_FourChildren, DegenerateScenes) {
     CheckDegenerateScenes(Fast({SplitMethod::Middle, SplitMethod::EqualCounts},
                                true));
@@ -258,6 +270,11 @@ EXERCISE_TEST(Ex7_10_BinnedSAH, SmallScenesWithKnownDecisions) {
 EXERCISE_TEST(Ex7_10_BinnedSAH, RandomScenes) {
     RunRandomScenes(Fast({SplitMethod::SAH}, false), 601,
                     kExerciseRandomScenes / 2);
+}
+
+EXERCISE_TEST(Ex7_10_BinnedSAH, RandomScenesOfAllShapes) {
+    RunRandomScenes(Fast({SplitMethod::SAH}, false), 721,
+                    kExerciseRandomScenes / 2, Shapes::All);
 }
 
 EXERCISE_TEST(Ex7_10_BinnedSAH, DegenerateScenes) {

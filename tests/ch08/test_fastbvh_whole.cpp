@@ -1,7 +1,7 @@
 // Tests of chapter 7's FastBVHAccel as the book writes it: with every split
 // method and several leaf sizes, and adopting BVHAccel's trees, against a
 // brute-force loop over the primitives on thousands of random scenes of
-// spheres, disks and triangles; structure invariants of every tree built;
+// spheres, disks and triangles, and of every shape of chapter 3; structure invariants of every tree built;
 // degenerate inputs; its triangle test against Triangle::Intersect(), bit
 // for bit; its hits against BVHAccel's; rays with NaN and infinite
 // components in every octant. The scenes and oracles are chapter 6's
@@ -70,6 +70,21 @@ AccelSet Fast(std::vector<SplitMethod> methods) {
     };
 }
 
+// The same, and the BVHAccel itself, traced by its own Intersect() and
+// IntersectP() (whose choice of the nearer child is chapter 6's exercise,
+// here the book's code).
+AccelSet FastAndBVH(std::vector<SplitMethod> methods) {
+    return [methods](const Scene &scene, int leafSize) {
+        std::vector<Accel> v = Fast(methods)(scene, leafSize);
+        for (SplitMethod m : methods) {
+            auto bvh = std::make_unique<BVHAccel>(scene.prims, leafSize, m);
+            CheckStructure(*bvh, scene.prims);
+            v.push_back({Label("BVHAccel", m, leafSize), std::move(bvh)});
+        }
+        return v;
+    };
+}
+
 const std::vector<SplitMethod> kAllMethods(std::begin(kMethods),
                                            std::end(kMethods));
 
@@ -86,6 +101,27 @@ TEST(FastBVHRandomScenes, Middle) {
 }
 TEST(FastBVHRandomScenes, EqualCounts) {
     RunRandomScenes(Fast({SplitMethod::EqualCounts}), 604, kRandomScenes);
+}
+
+// Scenes of every shape of chapter 3 (cylinders, cones, paraboloids and
+// hyperboloids with spheres, disks and triangles), partial and cut, under
+// random transformations, with rays from inside them: FastBVHAccel and
+// BVHAccel, each with its own traversal, against brute force.
+TEST(FastBVHRandomScenesOfAllShapes, SAH) {
+    RunRandomScenes(FastAndBVH({SplitMethod::SAH}), 821, kRandomScenes,
+                    Shapes::All);
+}
+TEST(FastBVHRandomScenesOfAllShapes, HLBVH) {
+    RunRandomScenes(FastAndBVH({SplitMethod::HLBVH}), 822, kRandomScenes,
+                    Shapes::All);
+}
+TEST(FastBVHRandomScenesOfAllShapes, Middle) {
+    RunRandomScenes(FastAndBVH({SplitMethod::Middle}), 823, kRandomScenes,
+                    Shapes::All);
+}
+TEST(FastBVHRandomScenesOfAllShapes, EqualCounts) {
+    RunRandomScenes(FastAndBVH({SplitMethod::EqualCounts}), 824,
+                    kRandomScenes, Shapes::All);
 }
 
 TEST(FastBVHDegenerate, OnePrimitive) { CheckOnePrimitive(Fast(kAllMethods)); }

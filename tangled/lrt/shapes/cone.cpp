@@ -38,8 +38,7 @@ SurfaceInteraction Cone::DescribeHit(const QuadricRay &q,
 }
 Float Cone::Area() const {
     // Compute the area of the partial cone
-    return Float(0.5) * phiMax * radius *
-           std::sqrt(height * height + radius * radius);
+    return Float(0.5) * phiMax * radius * std::hypot(height, radius);
 }
 
 }  // namespace lrt

@@ -42,7 +42,7 @@ SurfaceInteraction Cylinder::DescribeHit(const QuadricRay &q,
 }
 Float Cylinder::Area() const {
     // Compute the area of the partial cylinder
-    return (zMax - zMin) * radius * phiMax;
+    return phiMax * radius * (zMax - zMin);
 }
 
 }  // namespace lrt

@@ -60,23 +60,66 @@ SurfaceInteraction Hyperboloid::DescribeHit(const QuadricRay &q,
     Vector3f d2Pdvv(0, 0, 0);
     return Interaction(q, hit, OffAxis(hit.p, rMax), uv, dpdv, d2Pdvv);
 }
+// S(x) = arsinh(x) / x for x >= 0, with its limits: 1 at 0 (the cylinder),
+// 0 at infinity, where a tiny waist makes mu t / rho0 overflow (the cone).
+static Float ArsinhRatio(Float x) {
+    if (x == 0) return 1;
+    if (std::isinf(x)) return 0;
+    return std::asinh(x) / x;
+}
+
 Float Hyperboloid::Area() const {
-    // Compute the area of the partial hyperboloid
-    double dx = double(p2.x) - p1.x, dy = double(p2.y) - p1.y,
-           dz = double(p2.z) - p1.z;
-    double x1 = p1.x, y1 = p1.y;
-    double dxy2 = dx * dx + dy * dy, cross = x1 * dy - y1 * dx;
-    double A = dxy2 * (dxy2 + dz * dz);
-    double B = (dxy2 > 0) ? cross * cross * dz * dz / dxy2 : 0;
-    double vWaist = (dxy2 > 0) ? -(x1 * dx + y1 * dy) / dxy2 : 0;
-    auto F = [&](double s) {
-        if (A == 0) return std::sqrt(x1 * x1 + y1 * y1) * std::abs(dz) * s;
-        if (B == 0) return 0.5 * std::sqrt(A) * s * std::abs(s);
-        return 0.5 * (s * std::sqrt(A * s * s + B) +
-                      B / std::sqrt(A) *
-                          std::asinh(std::sqrt(A) * s / std::sqrt(B)));
-    };
-    return Float(phiMax * (F(1 - vWaist) - F(-vWaist)));
+    // Find the waist and the slope of the hyperboloid's profile
+    Vector3f d = p2 - p1;
+    Float dxy2 = d.x * d.x + d.y * d.y;
+    Float height = std::abs(d.z);
+    Float rho0, mu, t0;
+    if (dxy2 == 0) {
+        // A vertical segment sweeps a cylinder: its waist is its radius, and
+        // since mu = 0 any height may serve as the waist's.
+        rho0 = std::sqrt(p1.x * p1.x + p1.y * p1.y);
+        mu = 0;
+        t0 = 0;
+    } else {
+        Float dxy = std::sqrt(dxy2);
+        rho0 = std::abs(p1.x * d.y - p1.y * d.x) / dxy;
+        Float kappa = dxy / height;
+        mu = kappa * std::hypot(Float(1), kappa);
+        const Point3f &lower = (d.z > 0) ? p1 : p2;
+        t0 = d.z * ((lower.x * d.x + lower.y * d.y) / dxy2);
+    }
+    Float t1 = t0 + height;
+    // Integrate the hyperboloid's profile between its heights
+    auto w = [&](Float t) { return std::hypot(rho0, mu * t); };
+    if (t0 < 0 && t1 > 0) {
+        // The waist lies inside the band: G(t1) + G(-t0), no cancellation.
+        auto G = [&](Float t) {
+            Float second = (rho0 > 0) ? rho0 * ArsinhRatio(mu * t / rho0) : 0;
+            return Float(0.5) * t * (w(t) + second);
+        };
+        return phiMax * (G(t1) + G(-t0));
+    }
+    // Both heights on one side of the waist: mirror them to 0 <= t0 < t1.
+    if (t1 <= 0) {
+        Float t = -t1;
+        t1 = -t0;
+        t0 = t;
+    }
+    // The first difference, with numerator and denominator divided by w1 >=
+    // rho0, mu t1, mu t0, so that no square overflows.
+    Float w0 = w(t0), w1 = w(t1);
+    Float first = height * (t1 + t0) *
+                  (rho0 * (rho0 / w1) + mu * t0 * (mu * t0 / w1) +
+                   mu * t1 * (mu * t1 / w1)) /
+                  (t1 + t0 * (w0 / w1));
+    Float second = 0;
+    if (rho0 > 0 && std::isfinite(mu * t1 / rho0)) {
+        Float c0 = std::hypot(Float(1), mu * t0 / rho0);
+        Float c1 = std::hypot(Float(1), mu * t1 / rho0);
+        Float R = (t1 + t0) / (t1 * c0 + t0 * c1);
+        second = rho0 * height * R * ArsinhRatio(mu * height * R / rho0);
+    }
+    return phiMax * Float(0.5) * (first + second);
 }
 
 }  // namespace lrt

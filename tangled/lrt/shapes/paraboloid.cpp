@@ -28,11 +28,11 @@ Paraboloid::Paraboloid(const Transform *ObjectToWorld,
             "Paraboloid: z0 and z1 must be finite and leave a surface above "
             "z = 0");
 }
-
 bool Paraboloid::LocateHit(const QuadricRay &q, QuadricHit *hit) const {
     q.PointAt(hit->t, &hit->p, &hit->pError);
     hit->phi = Azimuth(hit->p.x, hit->p.y);
-    return hit->p.z >= zMin && hit->p.z <= zMax && hit->phi <= phiMax;
+    return (zMin == 0 || hit->p.z >= zMin) && hit->p.z <= zMax &&
+           hit->phi <= phiMax;
 }
 SurfaceInteraction Paraboloid::DescribeHit(const QuadricRay &q,
                                            const QuadricHit &hit) const {
@@ -46,9 +46,10 @@ SurfaceInteraction Paraboloid::DescribeHit(const QuadricRay &q,
 }
 Float Paraboloid::Area() const {
     // Compute the area of the partial paraboloid
-    double r2 = double(radius) * radius, k = 4 * double(zMax) / r2;
-    return Float(phiMax * r2 * r2 / (12 * double(zMax) * zMax) *
-                 (std::pow(k * zMax + 1, 1.5) - std::pow(k * zMin + 1, 1.5)));
+    Float aHat = std::hypot(radius, 2 * zMax);
+    Float bHat = std::hypot(radius, 2 * std::sqrt(zMax) * std::sqrt(zMin));
+    return phiMax * radius * ((zMax - zMin) / (3 * zMax)) *
+           (aHat + bHat * (bHat / (aHat + bHat)));
 }
 
 }  // namespace lrt

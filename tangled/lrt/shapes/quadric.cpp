@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -22,8 +23,13 @@ QuadricRay::QuadricRay(const Ray &r, const Transform &WorldToObject) {
 }
 bool QuadricOfRevolution::Roots(const QuadricRay &q, EFloat *t0,
                                 EFloat *t1) const {
-    const EFloat &ox = q.ox, &oy = q.oy, &dx = q.dx, &dy = q.dy, &dz = q.dz;
-    EFloat oz = q.oz - zc;
+    const EFloat &dx = q.dx, &dy = q.dy, &dz = q.dz;
+    // Move the origin to the point of the ray nearest to (0, 0, zc)
+    const Vector3f &d = q.ray.d;
+    Vector3f oc(q.ray.o.x, q.ray.o.y, q.ray.o.z - (Float)zc);
+    Float s = -Dot(oc, d) / Dot(d, d);
+    if (!std::isfinite(s)) s = 0;
+    EFloat ox = q.ox + s * dx, oy = q.oy + s * dy, oz = q.oz - zc + s * dz;
     // Compute the coefficients of the quadric's quadratic
     EFloat a = dx * dx + dy * dy - alpha * dz * dz;
     EFloat b = 2 * (dx * ox + dy * oy - alpha * dz * oz) - beta * dz;
@@ -39,9 +45,22 @@ bool QuadricOfRevolution::Roots(const QuadricRay &q, EFloat *t0,
     if ((Float)a == 0) {
         if ((Float)b == 0) return false;
         *t0 = *t1 = -c / b;
-        return true;
+    } else if (!QuadraticRoots(a, b, c, discrim, t0, t1)) {
+        return false;
+    } else {
+        // Bound the roots again if the moved origin is near a double root
+        bool aNonzero = a.LowerBound() > 0 || a.UpperBound() < 0;
+        if (aNonzero && !(std::isfinite(t0->LowerBound()) &&
+                          std::isfinite(t1->UpperBound()))) {
+            EFloat rootDiscrim = sqrt(discrim);
+            *t0 = (-b - rootDiscrim) / (2 * a);
+            *t1 = (-b + rootDiscrim) / (2 * a);
+            if ((Float)*t0 > (Float)*t1) std::swap(*t0, *t1);
+        }
     }
-    return QuadraticRoots(a, b, c, discrim, t0, t1);
+    *t0 = *t0 + s;
+    *t1 = *t1 + s;
+    return true;
 }
 // Convert phiMax from degrees to radians
 static Float PhiMaxRadians(Float phiMaxDegrees) {

@@ -1,6 +1,7 @@
 // Hidden tests of chapter 4's graded exercises (docs/exercises.md): they run
 // at grading time only and never ship to students. The public tests of the
-// same exercises are the suites Ex4_9_*, Ex4_10_* and Ex4_11_* in tests/ch04/;
+// same exercises are the suites Ex4_9_*, Ex4_10_*, Ex4_11_* and Ex4_12_* in
+// tests/ch04/;
 // these use other cases and, where they need an oracle, other methods:
 //
 // - areas known in closed form (whole spheres, hemispheres, half disks,
@@ -10,7 +11,8 @@
 //   last place thin;
 // - Monte Carlo hit-or-miss estimates: normalized Gaussian points on the
 //   sphere (which owe nothing to the hat-box theorem) and uniform points in a
-//   square around a disk;
+//   square around a disk; for the paraboloid, uniform points in the square
+//   around its shadow on the xy plane, weighted by the graph's area element;
 // - properties over many random cases (bands of equal height have equal
 //   areas; areas add up), and exact results (right triangles with dyadic
 //   legs, collinear vertices).
@@ -23,6 +25,7 @@
 #include "lrt/shapes/sphere.h"
 #include "lrt/shapes/disk.h"
 #include "lrt/shapes/triangle.h"
+#include "lrt/shapes/paraboloid.h"
 
 #include "ch04/exercise_calls.h"
 
@@ -602,4 +605,168 @@ EXERCISE_TEST(Ex4_11_TriangleAreaHidden, CollinearVerticesHaveZeroArea) {
     std::vector<Point3f> P = {Point3f(big, -big, big), Point3f(0, 1, 2),
                               Point3f(big, -big, big)};
     EXPECT_EQ(ex::TriangleArea(Transform(), P[0], P[1], P[2]), 0);
+}
+
+// ---------------------------------------------------------------------------
+// Exercise 4.12: Paraboloid::Area()
+
+namespace {
+
+// The area of the graph z = h(x, y) over a region is the integral of
+// sqrt(1 + |grad h|^2) over the region. For the paraboloid z = (x^2 + y^2) / c
+// that is sqrt(1 + 4 rho^2 / c^2). The estimate averages it over uniform
+// points in the square [-r, r]^2, counting 0 outside the shadow of the
+// surface (radii from rhoMin to r, azimuths up to phiMax).
+struct Weighted {
+    double mean, se;
+};
+
+Weighted ParaboloidShadowMean(double r, double zMin, double zMax,
+                              double phiMax, uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(-1, 1);
+    double c = r * r / zMax, rhoMin = r * std::sqrt(zMin / zMax);
+    double sum = 0, sum2 = 0;
+    for (int i = 0; i < kPoints; ++i) {
+        double x = r * U(rng), y = r * U(rng);
+        double rho = std::sqrt(x * x + y * y);
+        double phi = std::atan2(y, x);
+        if (phi < 0) phi += 2 * kPi;
+        double f = 0;
+        if (rho <= r && rho >= rhoMin && phi <= phiMax)
+            f = std::sqrt(1 + 4 * rho * rho / (c * c));
+        sum += f;
+        sum2 += f * f;
+    }
+    double mean = sum / kPoints;
+    double var = std::max(0.0, sum2 / kPoints - mean * mean);
+    return {mean, std::sqrt(var / kPoints)};
+}
+
+}  // namespace
+
+// Paraboloids whose heights make the closed form's powers rational: with
+// r = 2 zMax, 1 + 4 zMax z / r^2 = 1 + z / zMax, which is 2 at the rim and
+// 1.5625 = 1.25^2 at zMin = 0.5625 zMax. The areas are then
+// phiMax (4/3) zMax^2 (2 sqrt 2 - 1) with the tip and
+// phiMax (4/3) zMax^2 (2 sqrt 2 - 1.953125) for the band, in long double.
+EXERCISE_TEST(Ex4_12_ParaboloidAreaHidden, SpecialHeightsInClosedForm) {
+    std::mt19937_64 rng(calls::Seed(0x4ea12));
+    std::uniform_real_distribution<double> U(0, 1);
+    const LD root2 = std::sqrt(LD(2));
+    for (int i = 0; i < kPropertyCases / 10; ++i) {
+        // Powers of two keep r = 2 zMax and 0.5625 zMax exact.
+        Float zMax = std::ldexp(Float(1), int(-40 + 80 * U(rng)));
+        Float r = 2 * zMax;
+        Float deg = (i % 3 == 0) ? 360 : Float(1 + 359 * U(rng));
+        LD phi = StoredPhiMax(deg);
+        LD tip = phi * 4 / 3 * LD(zMax) * zMax * (2 * root2 - 1);
+        LD band = phi * 4 / 3 * LD(zMax) * zMax * (2 * root2 - 1.953125L);
+        EXPECT_LE(RelativeError(ex::ParaboloidArea(Transform(), false, r, 0,
+                                                   zMax, deg),
+                                tip),
+                  LD(gamma(20)))
+            << "zMax=" << zMax << " phiMax=" << deg;
+        EXPECT_LE(RelativeError(ex::ParaboloidArea(Transform(), false, r,
+                                                   0.5625f * zMax, zMax, deg),
+                                band),
+                  LD(gamma(20)))
+            << "zMax=" << zMax << " phiMax=" << deg;
+    }
+}
+
+// Properties over random paraboloids: the part of a paraboloid below a
+// quarter of its height is the paraboloid of half its radius (both exact in
+// binary), so the areas of [0, zMax / 4] with radius r / 2 and of
+// [zMax / 4, zMax] with radius r add up to that of [0, zMax] with radius r;
+// scaling every length by a power of two scales the area by its square; the
+// azimuths add up; and a thinner band has a smaller area.
+EXERCISE_TEST(Ex4_12_ParaboloidAreaHidden, AdditivityScalingAndMonotony) {
+    std::mt19937_64 rng(calls::Seed(0x4ea13));
+    std::uniform_real_distribution<double> U(0, 1);
+    const LD tol = 3 * LD(gamma(20));
+    for (int i = 0; i < kPropertyCases; ++i) {
+        Float r = Float(std::exp(-10 + 20 * U(rng)));
+        Float zMax = Float(r * std::exp(-9 + 18 * U(rng)));
+        Float deg = Float(1 + 359 * U(rng));
+        auto A = [&](Float radius, Float z0, Float z1, Float d) {
+            return LD(ex::ParaboloidArea(Transform(), false, radius, z0, z1,
+                                         d));
+        };
+        LD whole = A(r, 0, zMax, deg);
+        LD parts = A(r / 2, 0, zMax / 4, deg) + A(r, zMax / 4, zMax, deg);
+        ASSERT_LE(RelativeError(parts, whole), tol)
+            << "r=" << r << " zMax=" << zMax;
+        Float zMin = Float(U(rng) * zMax);
+        if (!(zMin < zMax)) continue;
+        int k = int(-10 + 20 * U(rng));
+        LD scaled = A(std::ldexp(r, k), std::ldexp(zMin, k),
+                      std::ldexp(zMax, k), deg);
+        ASSERT_LE(RelativeError(scaled, std::ldexp(A(r, zMin, zMax, deg),
+                                                   2 * k)),
+                  tol)
+            << "r=" << r << " zMin=" << zMin << " zMax=" << zMax << " k=" << k;
+        LD half = A(r, zMin, zMax, deg / 2);
+        ASSERT_LE(RelativeError(2 * half, A(r, zMin, zMax, deg)), tol)
+            << "r=" << r << " zMin=" << zMin << " zMax=" << zMax;
+        Float zMid = Float(zMin + 0.5 * (double(zMax) - zMin));
+        if (zMid > zMin && zMid < zMax) {
+            ASSERT_LT(A(r, zMid, zMax, deg), A(r, zMin, zMax, deg))
+                << "r=" << r << " zMin=" << zMin << " zMax=" << zMax;
+        }
+    }
+}
+
+// Monte Carlo over the shadow of the surface, which owes nothing to the
+// surface-of-revolution integral; and plausible mistakes that the estimate
+// must reject: the shadow's area alone (no slope), the cone through the
+// rims, and the difference of powers without the factor 1/12.
+EXERCISE_TEST(Ex4_12_ParaboloidAreaHidden, MatchesTheShadowsAreaElement) {
+    struct Case {
+        Float r, z0, z1, degrees;
+    };
+    static const Case cases[] = {{1, 0, 1, 360},         // with its tip
+                                 {1.5f, 0.4f, 2, 360},   // cut above it
+                                 {2, 0, 0.3f, 200},      // shallow dish
+                                 {0.5f, 1, 3, 300},      // deep band
+                                 {1, -1, 0.75f, 90}};    // clamped at 0
+    static const std::vector<Weighted> means = [] {
+        std::vector<Weighted> v;
+        uint64_t seed = 0x4eb0;
+        for (const Case &c : cases) {
+            double zMin = std::max(0.0, double(std::min(c.z0, c.z1)));
+            double zMax = std::max(c.z0, c.z1);
+            v.push_back(ParaboloidShadowMean(c.r, zMin, zMax,
+                                             double(c.degrees) * kPi / 180,
+                                             ++seed));
+        }
+        return v;
+    }();
+    for (size_t k = 0; k < means.size(); ++k) {
+        const Case &c = cases[k];
+        double r = c.r, square = 4 * r * r;
+        double estimate = square * means[k].mean, se = square * means[k].se;
+        double zMin = std::max(0.0, double(std::min(c.z0, c.z1)));
+        double zMax = std::max(c.z0, c.z1);
+        double phi = double(c.degrees) * kPi / 180;
+        std::string what = "paraboloid r=" + std::to_string(c.r) + " z=[" +
+                           std::to_string(c.z0) + ", " +
+                           std::to_string(c.z1) + "]";
+        Float area = ex::ParaboloidArea(Transform(), false, c.r, c.z0, c.z1,
+                                        c.degrees);
+        ASSERT_GT(se, 0) << what;
+        EXPECT_LE(std::abs(area - estimate), kSigmas * se)
+            << what << ": Area() " << area << ", estimate " << estimate
+            << " +- " << se;
+        double rhoMin = r * std::sqrt(zMin / zMax);
+        double k4 = 4 * zMax / (r * r);
+        double powers = std::pow(1 + k4 * zMax, 1.5) -
+                        std::pow(1 + k4 * zMin, 1.5);
+        double slant = std::hypot(r - rhoMin, zMax - zMin);
+        for (double wrong : {0.5 * phi * (r * r - rhoMin * rhoMin),
+                             0.5 * phi * (r + rhoMin) * slant,
+                             phi * r * r * r * r / (zMax * zMax) * powers})
+            EXPECT_GT(std::abs(wrong - estimate), kSigmas * se)
+                << what << ": " << wrong;
+    }
 }

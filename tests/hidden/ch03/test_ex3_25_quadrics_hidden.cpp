@@ -21,7 +21,7 @@ EXERCISE_TEST(Ex3_25_QuadricsHidden, OtherCutsAndSizes) {
                CylinderDef(30, -0.1, 0.1, 300, "wide thin cylinder")},
               lrt::calls::Seed(3600));
     RunOracle("Cone (hidden)",
-              {ConeDef(5, 0.2, 20, "thin cone wedge"),
+              {ConeDef(5, 0.2, 40, "thin cone wedge"),
                ConeDef(0.01, 0.03, 359, "tiny cone")},
               lrt::calls::Seed(3601));
     RunOracle("Paraboloid (hidden)",

@@ -1,8 +1,10 @@
-// Helpers shared by the quadric oracles of test_sphere.cpp, test_disk.cpp
-// and test_far.cpp: a small vector type (in double and in long double
-// precision), conversions to and from lrt's types, a seeded random source,
-// and affine transformations with inverses written down from their factors
-// (independent of lrt's Inverse).
+// Helpers shared by the quadric oracles of test_sphere.cpp, test_disk.cpp,
+// test_far.cpp and the tests of the other quadrics (quadrics_oracle.h): a
+// small vector type (in double and in long double precision), conversions to
+// and from lrt's types, a seeded random source, affine transformations with
+// inverses written down from their factors (independent of lrt's Inverse),
+// the object-space ray of a world ray with the bounds on its rounding errors,
+// and the test whether an error box contains a point of a surface.
 #pragma once
 
 #include "lrt/core/transform.h"
@@ -10,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 
 namespace {
@@ -161,5 +164,61 @@ struct Affine {
         return lrt::Transform(mm, mi);
     }
 };
+
+const LD kEps = (LD)lrt::MachineEpsilon;
+inline LD Gamma(int n) { return n * kEps / (1 - n * kEps); }
+
+// The object-space ray of a Float world ray, and the bounds e and g on the
+// rounding errors of its origin and direction that the transformation
+// computes (@eq:point-error of Chapter 2), evaluated independently here.
+struct ObjectRay {
+    L3 o, d, e, g;
+};
+
+inline ObjectRay ToObject(const lrt::Transform &w2o, const lrt::Ray &r) {
+    const lrt::Matrix4x4 &m = w2o.GetMatrix();
+    LD o[3] = {r.o.x, r.o.y, r.o.z}, d[3] = {r.d.x, r.d.y, r.d.z};
+    LD ro[3], rd[3], e[3], g[3];
+    for (int i = 0; i < 3; ++i) {
+        ro[i] = m.m[i][3];
+        rd[i] = 0;
+        e[i] = std::abs((LD)m.m[i][3]);
+        g[i] = 0;
+        for (int j = 0; j < 3; ++j) {
+            ro[i] += (LD)m.m[i][j] * o[j];
+            rd[i] += (LD)m.m[i][j] * d[j];
+            e[i] += std::abs((LD)m.m[i][j] * o[j]);
+            g[i] += std::abs((LD)m.m[i][j] * d[j]);
+        }
+        e[i] *= Gamma(3);
+        g[i] *= Gamma(3);
+    }
+    ObjectRay res;
+    res.o = L3(ro[0], ro[1], ro[2]);
+    res.d = L3(rd[0], rd[1], rd[2]);
+    res.e = L3(e[0], e[1], e[2]);
+    res.g = L3(g[0], g[1], g[2]);
+    return res;
+}
+
+// Does the box p +- e contain a point of the surface f = 0? The surface is
+// nearly flat at the scale of the box, so it suffices that f changes sign
+// (or vanishes) over the box's corners; where it may not be (the apex of a
+// cone), n > 1 samples the box on a grid of n + 1 points a side.
+template <typename F>
+bool BoxStraddles(D3 p, D3 e, F f, int n = 1) {
+    LD lo = std::numeric_limits<LD>::infinity(), hi = -lo;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j)
+            for (int k = 0; k <= n; ++k) {
+                LD x = (LD)p.x + (LD)e.x * (2 * i - n) / n;
+                LD y = (LD)p.y + (LD)e.y * (2 * j - n) / n;
+                LD z = (LD)p.z + (LD)e.z * (2 * k - n) / n;
+                LD v = f(x, y, z);
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+    return lo <= 0 && hi >= 0;
+}
 
 }  // namespace

@@ -31,23 +31,6 @@ constexpr int kMaxAmbiguousDisagreementsPer100k = 50;
 // Width of the ambiguity bands, in units of Float's machine epsilon.
 constexpr double kBand = 256;
 
-
-// Does the box p +- e contain a point of the surface f = 0? The surface is
-// flat, so it suffices that f changes sign (or vanishes) over the corners.
-template <typename F>
-bool BoxStraddles(D3 p, D3 e, F f) {
-    LD lo = std::numeric_limits<LD>::infinity(), hi = -lo;
-    for (int c = 0; c < 8; ++c) {
-        LD x = (LD)p.x + ((c & 1) ? e.x : -e.x);
-        LD y = (LD)p.y + ((c & 2) ? e.y : -e.y);
-        LD z = (LD)p.z + ((c & 4) ? e.z : -e.z);
-        LD v = f(x, y, z);
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-    }
-    return lo <= 0 && hi >= 0;
-}
-
 struct DiskDef {
     double h, r, ri, phiMaxDeg;
     std::string name;

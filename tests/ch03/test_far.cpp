@@ -29,44 +29,9 @@
 
 namespace {
 
-const LD kEps = (LD)lrt::MachineEpsilon;
-LD Gamma(int n) { return n * kEps / (1 - n * kEps); }
 // The exponent of the smallest relative offsets of the random rays: a tenth
 // of machine epsilon, 6e-9 for float and 1e-17 for double.
 const double kLogEps = std::log10((double)lrt::MachineEpsilon) - 1;
-
-// The object-space ray of a Float world ray, and the bounds e and g on the
-// rounding errors of its origin and direction that the transformation
-// computes (@eq:point-error of Chapter 2), evaluated independently here.
-struct ObjectRay {
-    L3 o, d, e, g;
-};
-
-ObjectRay ToObject(const lrt::Transform &w2o, const lrt::Ray &r) {
-    const lrt::Matrix4x4 &m = w2o.GetMatrix();
-    LD o[3] = {r.o.x, r.o.y, r.o.z}, d[3] = {r.d.x, r.d.y, r.d.z};
-    LD ro[3], rd[3], e[3], g[3];
-    for (int i = 0; i < 3; ++i) {
-        ro[i] = m.m[i][3];
-        rd[i] = 0;
-        e[i] = std::abs((LD)m.m[i][3]);
-        g[i] = 0;
-        for (int j = 0; j < 3; ++j) {
-            ro[i] += (LD)m.m[i][j] * o[j];
-            rd[i] += (LD)m.m[i][j] * d[j];
-            e[i] += std::abs((LD)m.m[i][j] * o[j]);
-            g[i] += std::abs((LD)m.m[i][j] * d[j]);
-        }
-        e[i] *= Gamma(3);
-        g[i] *= Gamma(3);
-    }
-    ObjectRay res;
-    res.o = L3(ro[0], ro[1], ro[2]);
-    res.d = L3(rd[0], rd[1], rd[2]);
-    res.e = L3(e[0], e[1], e[2]);
-    res.g = L3(g[0], g[1], g[2]);
-    return res;
-}
 
 // The exact intersection of a line with a sphere of radius r at the
 // origin, and the chapter's bounds on the errors of a Float computation.

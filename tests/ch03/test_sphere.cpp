@@ -192,23 +192,6 @@ lrt::Ray ToRay(const TestRay &t) {
     return lrt::Ray(ToP(t.o), ToV(t.d), lrt::Float(t.tMax));
 }
 
-// Does the box p +- e contain a point of the surface f = 0? The surface is
-// nearly flat at the scale of the box, so it suffices that f changes sign
-// (or vanishes) over the box's corners.
-template <typename F>
-bool BoxStraddles(D3 p, D3 e, F f) {
-    LD lo = std::numeric_limits<LD>::infinity(), hi = -lo;
-    for (int c = 0; c < 8; ++c) {
-        LD x = (LD)p.x + ((c & 1) ? e.x : -e.x);
-        LD y = (LD)p.y + ((c & 2) ? e.y : -e.y);
-        LD z = (LD)p.z + ((c & 4) ? e.z : -e.z);
-        LD v = f(x, y, z);
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-    }
-    return lo <= 0 && hi >= 0;
-}
-
 struct Stats {
     long rays = 0, hits = 0, ambiguous = 0, ambiguousDisagree = 0;
     long failures = 0, derivativeChecks = 0, relaxed = 0, tOver1e4 = 0;

@@ -137,13 +137,16 @@ CCACHE_ENV := CCACHE_NOHASHDIR=1 CCACHE_DEPEND=1 CCACHE_INODECACHE=1 \
 # gcc writes the dependency file (-MD) even when the compile fails; the sed
 # that makes its paths absolute does not run then, and the next make would
 # stop at its relative paths ("No rule to make target src/..."), so a failed
-# compile removes it.
+# compile removes it, and the object too: an object of an earlier compile
+# without its dependency file would depend on its source alone, and after
+# the error was mended in a header the next make would keep it and run the
+# old code.
 define compile
 @mkdir -p $(@D)
 $(call say,CXX,$(patsubst src/%,%,$(1)) ($(AS_OF)))
 $(Q)cd $(CC_DIR) && $(CCACHE_ENV) $(CCACHE) $(CXX) $(or $(3),$(CXXFLAGS)) \
     -fdebug-prefix-map=$(abspath $(CC_DIR))=. -Isrc $(2) -MD -MP -MT $@ -c $(1) \
-    -o $(abspath $@) || { rm -f $(abspath $(basename $@)).d; exit 1; }
+    -o $(abspath $@) || { rm -f $(abspath $(basename $@)).d $(abspath $@); exit 1; }
 $(Q)sed -i -E 's#(^| )(src|tests|hidden|pch)/#\1$(CC_DIR)/\2/#g' $(basename $@).d
 endef
 

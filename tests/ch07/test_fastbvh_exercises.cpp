@@ -150,8 +150,11 @@ EXERCISE_TEST(Ex7_8_FourBoxes, EveryOctantWithSignedZeros) {
         ex::FastBVHAccel equal(scene, 1, SplitMethod::EqualCounts);
         CheckEveryOctant(rng, scene, {&middle, &equal}, hitsPerOctant);
     }
+    // Every octant must have had hits to compare. How many varies with the
+    // scenes, from two to a dozen a scene: a bound in proportion to the
+    // scenes failed the book's own code for a grading's six random scenes.
     for (int octant = 0; octant < 8; ++octant)
-        EXPECT_GT(hitsPerOctant[octant], 2 * scenes) << "octant " << octant;
+        EXPECT_GT(hitsPerOctant[octant], 0) << "octant " << octant;
 }
 
 // The nodes have four slots, and the unused ones hold an empty box. A ray

@@ -40,7 +40,6 @@ class Channel {
             uint32_t n;
             if (in.NextLength(&n) && lrt::calls::FrameInbox::TooShort(n)) return false;
             if (in.Take(id, message)) return true;
-            if (!Flush()) return false;
             in.Compact();
             char buf[1 << 16];
             ssize_t r = read(3, buf, sizeof(buf));
@@ -48,25 +47,23 @@ class Channel {
             in.Append(buf, size_t(r));
         }
     }
-    void Send(uint64_t id, const std::string &reply) {
-        lrt::calls::AppendFrame(&out, id, reply);
-    }
-    bool Flush() {
-        const char *p = out.data();
-        size_t n = out.size();
+    // Writes one reply; false if the judge is gone.
+    bool Send(uint64_t id, const std::string &reply) {
+        std::string frame;
+        lrt::calls::AppendFrame(&frame, id, reply);
+        const char *p = frame.data();
+        size_t n = frame.size();
         while (n > 0) {
             ssize_t r = write(4, p, n);
             if (r <= 0) return false;
             p += r;
             n -= size_t(r);
         }
-        out.clear();
         return true;
     }
 
   private:
     lrt::calls::FrameInbox in;
-    std::string out;
 };
 
 std::string Serve(const std::string &message) {
@@ -131,15 +128,15 @@ int main() {
     uint64_t id;
     std::string message;
     while (channel.Next(&id, &message)) {
+        bool sent;
         if (id == 0) {
             lrt::calls::TheStore().objects.clear();
-            channel.Send(0, "");
+            sent = channel.Send(0, "");
         } else {
             lrt::calls::TheStore().currentCall = id;
-            channel.Send(id, Serve(message));
+            sent = channel.Send(id, Serve(message));
         }
-        if (!channel.Flush()) break;
+        if (!sent) break;
     }
-    channel.Flush();
     return 0;
 }

@@ -302,6 +302,40 @@ class StructureLimitTest(unittest.TestCase):
         self.assertEqual(problems[-1], '... and %d more problems' % more)
         self.assertLessEqual(len(changes), structure.MAX_LISTED + 1)
 
+    def test_new_chunks_are_compared_once(self):
+        # Renamed exercise chunks among many new ones: each new chunk's
+        # skeleton is made once, not once per missing exercise chunk (a red
+        # team's chapter of 153,000 new chunks kept grade.py busy for hours).
+        text = tg.read(os.path.join(tg.ROOT, 'chapters/03-shapes.md'))
+        for name in ('Offset p along n to the side of w',
+                     'Round offset point po away from p'):
+            text = text.replace('<<%s>>=' % name, '<<renamed %s>>=' % name, 1)
+        text += ''.join('```cpp\n<<new %d>>=\n@\n```\n' % k for k in range(2000))
+        tmp = tempfile.mkdtemp(prefix='lrt-structure-')
+        calls = []
+        real = structure.skeleton
+        try:
+            path = os.path.join(tmp, '03-shapes.md')
+            with open(path, 'w', encoding='utf-8') as f:
+                f.write(text)
+            cwd = os.getcwd()
+            os.chdir(tg.ROOT)
+            try:
+                reference, _ = structure.parse_chapter('chapters/03-shapes.md')
+                student, _ = structure.parse_chapter(path)
+            finally:
+                os.chdir(cwd)
+            structure.skeleton = lambda *a: calls.append(1) or real(*a)
+            problems, _, _ = structure.check_structure(reference, student, 'x.md')
+        finally:
+            structure.skeleton = real
+            shutil.rmtree(tmp, ignore_errors=True)
+        self.assertIn('was renamed to <<renamed Offset p along n', problems[0])
+        # Once per chunk of either chapter, and once per missing exercise
+        # chunk of the book.
+        chunks = len(reference.chunks) + len(student.chunks)
+        self.assertLessEqual(len(calls), chunks + 2)
+
     def test_a_long_message_is_cut(self):
         listed = structure.Listed()
         listed.append('x' * 100000)

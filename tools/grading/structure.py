@@ -83,16 +83,23 @@ def check_structure(reference, student, student_name, allow=False):
             problems.append('%s:%d: in <<%s>>: %s' % (student_name, chunk.line + 1 + index,
                                                        chunk.name, message))
         stu_regions[id(chunk)] = regions
-    new_names = [n for n in dict.fromkeys(stu_names) if n not in ref_names]
+    stu_skeletons = {id(c): skeleton(c, stu_regions[id(c)]) for c in student.chunks}
+    # A chapter may define any number of chunks the book does not have: the
+    # names are looked up in sets, and each chunk's skeleton is made once, so
+    # that the check stays linear in the chapter's length (a chapter of
+    # 150,000 new chunks with its exercise chunks renamed took an hour).
+    ref_name_set = set(ref_names)
+    new_names = [n for n in dict.fromkeys(stu_names) if n not in ref_name_set]
+    new_name_set = set(new_names)
     for name, exercise in exercise_chunks.items():
         want = ref_names.count(name)
         have = [c for c in student.chunks if c.name == name]
         if not have:
-            guess = [n for n in new_names]
+            guess = new_names[:MAX_LISTED]
             first = [c for c in reference.chunks if c.name == name][0]
             ref_skel = skeleton(first, [r for r in reference.regions if r.chunk is first])
-            renamed = [c for c in student.chunks if c.name in new_names and
-                       skeleton(c, stu_regions[id(c)]) == ref_skel]
+            renamed = [c for c in student.chunks
+                       if c.name in new_name_set and stu_skeletons[id(c)] == ref_skel]
             if renamed:
                 problems.append('%s:%d: exercise chunk <<%s>> (%s) was renamed to <<%s>>%s'
                                 % (student_name, renamed[0].line, name, exercise.id,
@@ -112,7 +119,7 @@ def check_structure(reference, student, student_name, allow=False):
     # The code outside the solution regions, chunk by chunk.
     ref_seq = [(c.name, skeleton(c, [r for r in reference.regions if r.chunk is c]))
                for c in reference.chunks]
-    stu_seq = [(c.name, skeleton(c, stu_regions[id(c)])) for c in student.chunks]
+    stu_seq = [(c.name, stu_skeletons[id(c)]) for c in student.chunks]
     changes = Listed()
     matcher = difflib.SequenceMatcher(None, ref_seq, stu_seq, autojunk=False)
     for tag, i1, i2, j1, j2 in matcher.get_opcodes():
@@ -135,7 +142,7 @@ def check_structure(reference, student, student_name, allow=False):
         for name, rest in stu_by_name.items():
             for s in rest:
                 changes.append('%s:%d: chunk <<%s>> is %s' % (
-                    student_name, s.line, name, 'an extra definition' if name in ref_names
+                    student_name, s.line, name, 'an extra definition' if name in ref_name_set
                     else 'not in the book'))
     # Which student region fills which reference region: the k-th region of
     # chunk name X in the student's text fills the k-th of the reference's.

@@ -47,6 +47,10 @@ fi
 if [ "${1:-}" = measure ]; then
     need valgrind command -v valgrind
 fi
+# make bench BENCH_PEERS=embree (tools/deps.sh embree) measures Embree 3 beside lrt.
+if [ "${1:-}" = embree ]; then
+    need libembree-dev test -f /usr/include/embree3/rtcore.h
+fi
 [ ${#missing[@]} -eq 0 ] && exit 0
 packages=$(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')
 if [ "$(id -u)" -eq 0 ]; then

@@ -28,6 +28,7 @@ struct BenchMesh {
     std::string name;
     Transform identity;
     std::vector<std::shared_ptr<Primitive>> prims;
+    PlyMesh ply;
 };
 
 struct RaySet {
@@ -51,7 +52,32 @@ struct BenchOptions {
     std::string jsonFile = "build/bvhbench.json";
 };
 
-const char *versionNames[] = {"first", "adopted", "final"};
+// The last is the peer of the next section, measured only if it is built in.
+const char *versionNames[] = {"first", "adopted", "final", "embree"};
+struct Agreement {
+    std::string mesh, rays;
+    size_t count = 0, lrtHits = 0, peerHits = 0, differ = 0;
+    size_t firstRay = 0;           // the first ray that differs
+    double firstLrt = 0, firstPeer = 0;  // its distances; infinite: a miss
+};
+struct Column {
+    const char *counter;
+    int width, precision;
+};
+const Column treeColumns[] = {{"nodes", 9, 0}, {"leaves", 8, 0},
+                              {"leaf_size", 5, 2}, {"sah_cost", 7, 2},
+                              {"depth", 5, 0}};
+const char *comparedTo[] = {"first", "embree"};
+
+struct Ratio {
+    double median, min, max;
+};
+std::string FormatRatio(const Ratio &r) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.2fx [%.2f, %.2f]", r.median, r.min,
+                  r.max);
+    return text;
+}
 // BVH Benchmark Data Generation
 void SubdivideMesh(PlyMesh *m) {
     std::unordered_map<uint64_t, int> midpoints;
@@ -210,6 +236,7 @@ std::unique_ptr<BenchMesh> MakeBenchMesh(const std::string &name,
                                          const PlyMesh &m) {
     auto bm = std::make_unique<BenchMesh>();
     bm->name = name;
+    bm->ply = m;
     auto shapes = CreateTriangleMesh(
         &bm->identity, &bm->identity, false, m.nTriangles(),
         m.vertexIndices.data(), m.nVertices(), m.p.data(), nullptr,
@@ -265,6 +292,16 @@ TraceResult TracePass(const Primitive &accel, const RaySet &rays) {
 template <typename Accel>
 using AccelSlot = std::shared_ptr<std::unique_ptr<Accel>>;
 
+template <typename Accel>
+void CountTree(benchmark::State &state, const Accel &accel) {
+    BVHStats s = accel.Stats();
+    state.counters["nodes"] = double(s.TotalNodes());
+    state.counters["leaves"] = double(s.leafNodes);
+    state.counters["leaf_size"] = s.AverageLeafSize();
+    state.counters["sah_cost"] = s.sahCost;
+    state.counters["depth"] = s.maxDepth;
+}
+
 template <typename Accel, typename Make>
 void RegisterBuild(const std::string &name, AccelSlot<Accel> slot, Make make,
                    const char *whyNoTree = "the build made no tree") {
@@ -277,12 +314,7 @@ void RegisterBuild(const std::string &name, AccelSlot<Accel> slot, Make make,
                 state.SkipWithError(whyNoTree);
                 return;
             }
-            BVHStats s = (*slot)->Stats();
-            state.counters["nodes"] = double(s.TotalNodes());
-            state.counters["leaves"] = double(s.leafNodes);
-            state.counters["leaf_size"] = s.AverageLeafSize();
-            state.counters["sah_cost"] = s.sahCost;
-            state.counters["depth"] = s.maxDepth;
+            CountTree(state, **slot);
         })
         ->Iterations(1)
         ->Unit(benchmark::kMillisecond);
@@ -319,48 +351,244 @@ const char roundTag[] = "/round:";
 std::string RoundName(const std::string &name, int round) {
     return name + roundTag + std::to_string(round + 1);
 }
+struct Version {
+    const char *name;
+    std::function<void(const std::string &)> registerBuild;
+    std::function<void(const std::string &, const RaySet &)> registerTrace;
+};
+
+template <typename Accel, typename Make>
+Version MakeVersion(const char *name, AccelSlot<Accel> slot, Make make,
+                    const char *whyNoTree = "the build made no tree") {
+    return {name,
+            [=](const std::string &n) {
+                RegisterBuild(n, slot, make, whyNoTree);
+            },
+            [=](const std::string &n, const RaySet &rays) {
+                RegisterTrace(n, slot, rays);
+            }};
+}
+
+void RunRegistered(benchmark::BenchmarkReporter *reporter) {
+    benchmark::RunSpecifiedBenchmarks(reporter);
+    benchmark::ClearRegisteredBenchmarks();
+}
+// BVH Benchmark Peer
+#if defined(LRT_BENCH_EMBREE)
+#include <embree3/rtcore.h>
+
+RTCDevice EmbreeDevice() {
+    static RTCDevice device = rtcNewDevice("threads=1");
+    if (!device)
+        throw std::runtime_error("Embree: cannot create a device (error " +
+                                 std::to_string(rtcGetDeviceError(nullptr)) +
+                                 ")");
+    return device;
+}
+// Embree Geometry and Scene
+class EmbreeGeometry {
+  public:
+    explicit EmbreeGeometry(const PlyMesh &m)
+        : geometry(rtcNewGeometry(EmbreeDevice(),
+                                  RTC_GEOMETRY_TYPE_TRIANGLE)) {
+        auto *p = static_cast<float *>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+            3 * sizeof(float), m.p.size()));
+        auto *v = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+            3 * sizeof(unsigned), size_t(m.nTriangles())));
+        if (!p || !v)
+            throw std::runtime_error("Embree: cannot allocate the buffers");
+        for (size_t i = 0; i < m.p.size(); ++i)
+            for (int a = 0; a < 3; ++a) p[3 * i + a] = float(m.p[i][a]);
+        std::copy(m.vertexIndices.begin(), m.vertexIndices.end(), v);
+        rtcCommitGeometry(geometry);
+    }
+    ~EmbreeGeometry() { rtcReleaseGeometry(geometry); }
+    EmbreeGeometry(const EmbreeGeometry &) = delete;
+    EmbreeGeometry &operator=(const EmbreeGeometry &) = delete;
+
+    RTCGeometry geometry;
+};
+class EmbreeScene {
+  public:
+    explicit EmbreeScene(const EmbreeGeometry &g)
+        : scene(rtcNewScene(EmbreeDevice())) {
+        rtcAttachGeometry(scene, g.geometry);
+        rtcCommitScene(scene);
+    }
+    ~EmbreeScene() { rtcReleaseScene(scene); }
+    EmbreeScene(const EmbreeScene &) = delete;
+    EmbreeScene &operator=(const EmbreeScene &) = delete;
+
+    RTCScene scene;
+};
+
+void CountTree(benchmark::State &, const EmbreeScene &) {}
+// Trace a ray with Embree
+inline bool EmbreeHit(const EmbreeScene &peer, const RaySet &rays, size_t i,
+                      float *t) {
+    const float *r = &rays.data[6 * i];
+    RTCRayHit rh;
+    rh.ray.org_x = r[0];
+    rh.ray.org_y = r[1];
+    rh.ray.org_z = r[2];
+    rh.ray.dir_x = r[3];
+    rh.ray.dir_y = r[4];
+    rh.ray.dir_z = r[5];
+    rh.ray.tnear = 0;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.time = 0;
+    rh.ray.mask = unsigned(-1);
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(peer.scene, &context, &rh);
+    *t = rh.ray.tfar;
+    // Inject a fault into the peer's hits, for the tests only
+    #if defined(LRT_BENCH_EMBREE_FAULT)
+    if (i % LRT_BENCH_EMBREE_FAULT == 0) return false;
+    #endif
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+// Embree Tracing Pass
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+TraceResult TracePass(const EmbreeScene &peer, const RaySet &rays) {
+    TraceResult r;
+    for (size_t i = 0; i < rays.Count(); ++i) {
+        float t;
+        if (EmbreeHit(peer, rays, i, &t)) {
+            ++r.hits;
+            r.sumT += t;
+        }
+    }
+    return r;
+}
+// Compare lrt's hits with the peer's
+bool SameHit(double tLrt, double tPeer) {
+    if (tLrt == Infinity || tPeer == Infinity) return tLrt == tPeer;
+    return std::abs(tLrt - tPeer) <= 1e-4 * tLrt;
+}
+
+size_t AllowedToDiffer(size_t rays) { return 1 + rays / 10000; }
+Agreement CompareHits(const BenchMesh &mesh, const Primitive &accel,
+                      const EmbreeScene &peer, const RaySet &rays) {
+    Agreement a;
+    a.mesh = mesh.name;
+    a.rays = rays.name;
+    a.count = rays.Count();
+    for (size_t i = 0; i < rays.Count(); ++i) {
+        Ray ray = rays.Get(i);
+        SurfaceInteraction isect;
+        double tLrt = accel.Intersect(ray, &isect) ? double(ray.tMax)
+                                                   : Infinity;
+        float t;
+        double tPeer = EmbreeHit(peer, rays, i, &t) ? double(t) : Infinity;
+        a.lrtHits += tLrt < Infinity;
+        a.peerHits += tPeer < Infinity;
+        if (!SameHit(tLrt, tPeer) && a.differ++ == 0) {
+            a.firstRay = i;
+            a.firstLrt = tLrt;
+            a.firstPeer = tPeer;
+        }
+    }
+    return a;
+}
+void CheckAgreement(const Agreement &a) {
+    if (a.differ <= AllowedToDiffer(a.count)) return;
+    auto hit = [](double t) {
+        return t < Infinity ? "a hit at t = " + std::to_string(t)
+                            : std::string("a miss");
+    };
+    throw std::runtime_error(
+        "lrt and embree disagree on " + a.mesh + " with " + a.rays + ": " +
+        std::to_string(a.differ) + " of " + std::to_string(a.count) +
+        " rays differ (at most " + std::to_string(AllowedToDiffer(a.count)) +
+        " may), with " + std::to_string(a.lrtHits) + " and " +
+        std::to_string(a.peerHits) + " hits; the first is ray " +
+        std::to_string(a.firstRay) + ": lrt finds " + hit(a.firstLrt) +
+        ", embree " + hit(a.firstPeer));
+}
+#endif
+// BVH Benchmark Groups
 void RunGroup(const BenchMesh &mesh, SplitMethod method,
               const std::vector<RaySet> &raySets, const BenchOptions &opt,
-              benchmark::BenchmarkReporter *reporter) {
+              benchmark::BenchmarkReporter *reporter,
+              std::vector<Agreement> *agreements) {
     auto first = std::make_shared<std::unique_ptr<BVHAccel>>();
-    auto adopted = std::make_shared<std::unique_ptr<FastBVHAccel>>();
     auto final = std::make_shared<std::unique_ptr<FastBVHAccel>>();
     int finalLeafSize = method == SplitMethod::SAH ? opt.finalLeafSize
                                                    : opt.firstLeafSize;
-    for (int r = 0; r < opt.buildRepetitions; ++r) {
-        auto name = [&](const char *version) {
-            return RoundName(BenchName(mesh, method, version, "build"), r);
-        };
-        RegisterBuild(name("first"), first, [&] {
-            return std::make_unique<BVHAccel>(mesh.prims, opt.firstLeafSize,
-                                              method);
-        });
-        RegisterBuild(
-            name("adopted"), adopted,
+    std::vector<Version> versions = {
+        MakeVersion("first", first,
+                    [&] {
+                        return std::make_unique<BVHAccel>(
+                            mesh.prims, opt.firstLeafSize, method);
+                    }),
+        MakeVersion(
+            "adopted", std::make_shared<std::unique_ptr<FastBVHAccel>>(),
             [=]() -> std::unique_ptr<FastBVHAccel> {
                 if (!*first) return nullptr;
                 return std::make_unique<FastBVHAccel>(**first);
             },
             "the adopted version copies the first version's tree, which "
             "was not built: let --benchmark_filter select the first "
-            "version's builds too");
-        RegisterBuild(name("final"), final, [=, &mesh] {
+            "version's builds too"),
+        MakeVersion("final", final, [=, &mesh] {
             return std::make_unique<FastBVHAccel>(mesh.prims, finalLeafSize,
                                                   method);
-        });
+        })};
+#if defined(LRT_BENCH_EMBREE)
+    // Add the Embree peer to the SAH group
+    auto peer = std::make_shared<std::unique_ptr<EmbreeScene>>();
+    if (method == SplitMethod::SAH) {
+        auto geometry = std::make_shared<EmbreeGeometry>(mesh.ply);
+        versions.push_back(MakeVersion(
+            "embree", peer,
+            [geometry]() -> std::unique_ptr<EmbreeScene> {
+                auto scene = std::make_unique<EmbreeScene>(*geometry);
+                if (rtcGetDeviceError(EmbreeDevice()) != RTC_ERROR_NONE)
+                    return nullptr;
+                return scene;
+            },
+            "Embree could not build the scene"));
     }
+#endif
+    for (int r = 0; r < opt.buildRepetitions; ++r)
+        for (const Version &v : versions)
+            v.registerBuild(
+                RoundName(BenchName(mesh, method, v.name, "build"), r));
+    RunRegistered(reporter);
+#if defined(LRT_BENCH_EMBREE)
+    // Check that lrt's final version and the peer agree on every ray
+    if (method == SplitMethod::SAH) {
+        if (!*final || !*peer)
+            std::printf("agreement of lrt and embree not checked on %s: "
+                        "a filter left out a build\n", mesh.name.c_str());
+        else
+            for (const RaySet &rays : raySets) {
+                agreements->push_back(CompareHits(mesh, **final, **peer, rays));
+                CheckAgreement(agreements->back());
+            }
+    }
+#else
+    (void)agreements;
+#endif
+    size_t n = versions.size();
     for (const RaySet &rays : raySets)
-        for (int r = 0; r < opt.passes; ++r) {
-            auto name = [&](const char *version) {
-                return RoundName(BenchName(mesh, method, version, rays.name),
-                                 r);
-            };
-            RegisterTrace(name("first"), first, rays);
-            RegisterTrace(name("adopted"), adopted, rays);
-            RegisterTrace(name("final"), final, rays);
-        }
-    benchmark::RunSpecifiedBenchmarks(reporter);
-    benchmark::ClearRegisteredBenchmarks();
+        for (int r = 0; r < opt.passes; ++r)
+            for (size_t k = 0; k < n; ++k) {
+                const Version &v = versions[(size_t(r) + k) % n];
+                v.registerTrace(
+                    RoundName(BenchName(mesh, method, v.name, rays.name), r),
+                    rays);
+            }
+    RunRegistered(reporter);
 }
 // BVH Benchmark Reporter
 struct Rounds {
@@ -404,7 +632,7 @@ class BenchReporter : public benchmark::ConsoleReporter {
         return m;
     }
 
-    std::optional<double> PairedRatio(const std::string &numerator,
+    std::optional<Ratio> PairedRatio(const std::string &numerator,
                                       const std::string &denominator,
                                       const std::string &counter) const {
         auto a = rounds.find(numerator), b = rounds.find(denominator);
@@ -419,7 +647,8 @@ class BenchReporter : public benchmark::ConsoleReporter {
         for (size_t i = 0; i < std::min(x.size(), y.size()); ++i)
             ratios.push_back(x[i] / y[i]);
         if (ratios.empty()) return std::nullopt;
-        return MedianOf(ratios);
+        auto [lo, hi] = std::minmax_element(ratios.begin(), ratios.end());
+        return Ratio{MedianOf(ratios), *lo, *hi};
     }
 
     static double MedianOf(std::vector<double> v) {
@@ -476,7 +705,8 @@ const char *ReferenceCheck(const std::string &mesh, const std::string &rays,
 }
 void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
                   const std::vector<RaySet> &raySets,
-                  const BenchOptions &opt, const BenchReporter &rep) {
+                  const BenchOptions &opt, const BenchReporter &rep,
+                  const std::vector<Agreement> &agreements) {
     BuildConfiguration build = ThisBuild();
     std::printf("\nbuilt with %s %s (%s)\n", build.command.c_str(),
                 build.flags.c_str(), build.compiler.c_str());
@@ -492,10 +722,13 @@ void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
             for (const char *v : versionNames) {
                 auto b = rep.Find(BenchName(*mesh, m, v, "build"));
                 if (!b) continue;
-                auto c = b->counters;
-                std::printf("%-12s %-8s %9.1f %9.0f %8.0f %5.2f %7.2f %5.0f\n",
-                            MethodName(m), v, b->cpuMs, c["nodes"], c["leaves"],
-                            c["leaf_size"], c["sah_cost"], c["depth"]);
+                std::printf("%-12s %-8s %9.1f", MethodName(m), v, b->cpuMs);
+                for (const Column &k : treeColumns) {
+                    auto c = b->counters.find(k.counter);
+                    if (c == b->counters.end()) std::printf(" %*s", k.width, "-");
+                    else std::printf(" %*.*f", k.width, k.precision, c->second);
+                }
+                std::printf("\n");
             }
         for (const RaySet &rays : raySets) {
             std::printf("%s (%zu rays)\n", rays.name.c_str(), rays.Count());
@@ -512,29 +745,41 @@ void PrintSummary(const std::vector<std::unique_ptr<BenchMesh>> &meshes,
                                 ReferenceCheck(mesh->name, rays.name, c["hits"]));
                 }
         }
-        // Print the ratios of the final version to the first
-        std::printf("final / first: throughput on each ray set; build time "
-                    "(medians of the rounds' ratios)\n");
-        for (SplitMethod m : opt.methods) {
-            std::printf("%-12s", MethodName(m));
-            auto name = [&](const char *v, const std::string &what) {
-                return BenchName(*mesh, m, v, what);
-            };
-            for (const RaySet &rays : raySets)
-                if (auto r = rep.PairedRatio(name("final", rays.name),
-                                             name("first", rays.name), "Mrays/s"))
-                    std::printf(" %s %.2fx", rays.name.c_str(), *r);
-            if (auto r = rep.PairedRatio(name("final", "build"),
-                                         name("first", "build"), ""))
-                std::printf(" build %.2fx", *r);
-            std::printf("\n");
+        // Print the ratios of the final version to the others
+        for (const char *other : comparedTo) {
+            bool headed = false;
+            for (SplitMethod m : opt.methods) {
+                std::string line;
+                auto add = [&](const std::string &what, const char *counter) {
+                    if (auto r = rep.PairedRatio(BenchName(*mesh, m, "final", what),
+                                                 BenchName(*mesh, m, other, what),
+                                                 counter))
+                        line += " " + what + " " + FormatRatio(*r);
+                };
+                for (const RaySet &rays : raySets) add(rays.name, "Mrays/s");
+                add("build", "");
+                if (line.empty()) continue;
+                if (!headed)
+                    std::printf("final / %s: throughput on each ray set; build "
+                                "time (median of the rounds' ratios [smallest, "
+                                "largest])\n", other);
+                headed = true;
+                std::printf("%-12s%s\n", MethodName(m), line.c_str());
+            }
         }
+        // Print the agreement of lrt and the peer
+        for (const Agreement &a : agreements)
+            if (a.mesh == mesh->name)
+                std::printf("lrt and embree on %s: %zu rays, %zu and %zu hits, "
+                            "%zu differ\n", a.rays.c_str(), a.count, a.lrtHits,
+                            a.peerHits, a.differ);
     }
 }
 void WriteJSON(const std::string &filename,
                const std::vector<std::unique_ptr<BenchMesh>> &meshes,
                const std::vector<RaySet> &raySets, const BenchOptions &opt,
-               const BenchReporter &rep) {
+               const BenchReporter &rep,
+               const std::vector<Agreement> &agreements) {
     BuildConfiguration build = ThisBuild();
     std::ostringstream js;
     js << "{\n  \"float\": \"" << (sizeof(Float) == 4 ? "float" : "double")
@@ -555,14 +800,31 @@ void WriteJSON(const std::string &filename,
                 js << sep << "    {\"mesh\": \"" << mesh->name << "\", \"triangles\": "
                    << mesh->prims.size() << ", \"method\": \"" << MethodName(m)
                    << "\", \"version\": \"" << v << "\", \"build_ms\": " << b->cpuMs;
-                for (const char *k : {"nodes", "leaves", "leaf_size", "sah_cost", "depth"})
-                    js << ", \"" << k << "\": " << b->counters.at(k);
+                for (const Column &k : treeColumns)
+                    if (auto c = b->counters.find(k.counter); c != b->counters.end())
+                        js << ", \"" << k.counter << "\": " << c->second;
                 auto first = [&](const std::string &what) {
                     return BenchName(*mesh, m, "first", what);
                 };
                 if (auto r = rep.PairedRatio(BenchName(*mesh, m, v, "build"),
                                              first("build"), ""))
-                    js << ", \"build_ratio\": " << *r;
+                    js << ", \"build_ratio\": " << r->median;
+                auto versus = [&](const std::string &what, const char *counter) {
+                    if (std::string(v) != "final") return;
+                    js << ", \"" << (what == "build" ? "build_versus" : "versus")
+                       << "\": {";
+                    const char *s = "";
+                    for (const char *other : comparedTo)
+                        if (auto r = rep.PairedRatio(BenchName(*mesh, m, v, what),
+                                                     BenchName(*mesh, m, other, what),
+                                                     counter)) {
+                            js << s << "\"" << other << "\": {\"median\": " << r->median
+                               << ", \"min\": " << r->min << ", \"max\": " << r->max << "}";
+                            s = ", ";
+                        }
+                    js << "}";
+                };
+                versus("build", "");
                 js << ", \"rays\": {";
                 const char *raySep = "";
                 for (const RaySet &rays : raySets) {
@@ -577,13 +839,23 @@ void WriteJSON(const std::string &filename,
                         js << ", \"reference\": \"" << check << "\"";
                     if (auto r = rep.PairedRatio(BenchName(*mesh, m, v, rays.name),
                                                  first(rays.name), "Mrays/s"))
-                        js << ", \"ratio\": " << *r;
+                        js << ", \"ratio\": " << r->median;
+                    versus(rays.name, "Mrays/s");
                     js << "}";
                     raySep = ", ";
                 }
                 js << "}}";
                 sep = ",\n";
             }
+    js << "\n  ],\n  \"agreement\": [";
+    sep = "\n";
+    for (const Agreement &a : agreements) {
+        js << sep << "    {\"mesh\": \"" << a.mesh << "\", \"rays\": \""
+           << a.rays << "\", \"count\": " << a.count << ", \"lrt_hits\": "
+           << a.lrtHits << ", \"peer_hits\": " << a.peerHits
+           << ", \"differ\": " << a.differ << "}";
+        sep = ",\n";
+    }
     js << "\n  ]\n}\n";
     std::ofstream out(filename);
     out << js.str();
@@ -667,12 +939,14 @@ int main(int argc, char **argv) {
             }
         }
         BenchReporter reporter;
+        std::vector<Agreement> agreements;
         for (const auto &mesh : meshes)
             for (SplitMethod m : opt.methods)
-                RunGroup(*mesh, m, raySets, opt, &reporter);
-        PrintSummary(meshes, raySets, opt, reporter);
+                RunGroup(*mesh, m, raySets, opt, &reporter, &agreements);
+        PrintSummary(meshes, raySets, opt, reporter, agreements);
         if (!opt.jsonFile.empty()) {
-            WriteJSON(opt.jsonFile, meshes, raySets, opt, reporter);
+            WriteJSON(opt.jsonFile, meshes, raySets, opt, reporter,
+                      agreements);
             std::printf("\nresults written to %s\n", opt.jsonFile.c_str());
         }
     } catch (const std::exception &e) {

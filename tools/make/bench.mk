@@ -25,6 +25,15 @@
 # stdout and bvhbench.json in the configuration's build directory.
 # BENCH_ARGS passes options, e.g. BENCH_ARGS="--methods sah --passes 9", or
 # Google Benchmark's own, e.g. BENCH_ARGS=--benchmark_filter=bunny_L2.
+#
+# Peers: BENCH_PEERS=embree measures Embree 3 beside lrt in the same run
+# (Appendix A's peer section). It needs libembree-dev (tools/deps.sh embree
+# installs it as root, or names the apt-get line), compiles the program with
+# -DLRT_BENCH_EMBREE and -lembree3 into a binary of its own, bvhbench-embree
+# beside bvhbench, and runs that one instead. Embree is the only peer; plain
+# make and make bench never need it. BENCH_PEER_DEFINES adds -D options to
+# the peer's program and BENCH_EMBREE_BIN names where it goes: for the tests
+# only (tests/tools/test_bench.py builds a program with an injected fault).
 
 BENCH_CXX ?= $(CXX)
 BENCH_CXXFLAGS ?= $(BOOK_OPT)
@@ -46,6 +55,10 @@ BENCH_BUILD := $(if $(BENCH_DEFAULT),$(BUILD),$(BUILD)/bench/$(BENCH_CONFIG_NAME
 BENCH_VARIANT := $(if $(filter double,$(FLOAT)),double,float)
 BENCH_DIR := $(BENCH_BUILD)/$(BENCH_VARIANT)/asof/$(LAST)
 BENCH_BIN := $(BENCH_DIR)/bench/bvhbench
+BENCH_PEERS ?=
+BENCH_KNOWN_PEERS := embree
+BENCH_PEER_DEFINES ?=
+BENCH_EMBREE_BIN ?= $(BENCH_DIR)/bench/bvhbench-embree
 BENCH_JSON := $(BENCH_BUILD)/bvhbench.json
 BENCH_DATA := $(BUILD)/bench-data
 BENCH_GENERATOR := ../shared/bench/gen_bench_data.py
@@ -63,7 +76,7 @@ BENCH_RECORD := -DLRT_BENCH_CXX='"$(BENCH_CXX)"' \
 # earlier chapters does not).
 BENCH_CHAPTER := $(shell grep -l '^<<bench/bvhbench.cpp>>=' $(filter %.md,$(CHAPTERS)) /dev/null)
 
-.PHONY: bench bench-build bench-compiler
+.PHONY: bench bench-build bench-lib bench-compiler bench-peers bench-embree-build
 bench-compiler:
 	@if ! command -v $(firstword $(BENCH_CXX)) > /dev/null; then \
 	    echo "make bench: BENCH_CXX=$(BENCH_CXX): no such compiler" \
@@ -73,28 +86,51 @@ bench-compiler:
 # configuration, so that it cannot rot between measurements; only make bench
 # runs it. Without the benchmark's chapter there is nothing to compile, and
 # make bench says so.
+# An unknown peer stops make bench before anything is built.
+bench-peers:
+	@for p in $(BENCH_PEERS); do \
+	    case " $(BENCH_KNOWN_PEERS) " in *" $$p "*) ;; *) \
+	        echo "make bench: BENCH_PEERS=$(BENCH_PEERS): unknown peer $$p" \
+	             "(known: $(BENCH_KNOWN_PEERS))" >&2; exit 1;; esac; done
+
 ifeq ($(BENCH_CHAPTER),)
 bench-build:
 	@echo "bench: no chapter of this book writes bench/bvhbench.cpp: nothing to build"
-bench: bench-build
+bench-embree-build: bench-build
+bench: bench-peers bench-build
 	@echo "make bench: the benchmark is Appendix A's; this book ends before it" >&2; exit 1
 else
 # In the default configuration the benchmark shares the library's build
 # directory: it waits for make's own lib, so that make -j does not tangle and
 # compile the same files twice at once.
-bench-build: $(LINTED) bench-compiler $(if $(BENCH_DEFAULT),lib)
+bench-lib: $(LINTED) bench-compiler $(if $(BENCH_DEFAULT),lib)
 	$(Q)$(BENCH_ASOF) tangle
 	$(Q)$(BENCH_ASOF) -j$(JOBS) lib
+
+# The program, compiled with the configuration's compiler and flags.
+# $(1): its file; $(2): extra options before the sources; $(3): after them.
+bench_compile = $(BENCH_CXX) $(BENCH_ALL_CXXFLAGS) $(BENCH_RECORD) $(2) \
+    -I$(BENCH_DIR)/src $(BENCH_DIR)/src/bench/bvhbench.cpp \
+    $(BENCH_DIR)/liblrt.a $(3) -lbenchmark -pthread -o $(1)
+
+bench-build: bench-lib
 	@mkdir -p $(dir $(BENCH_BIN))
 	$(call say,CXX,bench/bvhbench.cpp ($(BENCH_CXX) $(BENCH_CXXFLAGS)))
-	$(Q)$(BENCH_CXX) $(BENCH_ALL_CXXFLAGS) $(BENCH_RECORD) -I$(BENCH_DIR)/src \
-	    $(BENCH_DIR)/src/bench/bvhbench.cpp $(BENCH_DIR)/liblrt.a \
-	    -lbenchmark -pthread -o $(BENCH_BIN)
+	$(Q)$(call bench_compile,$(BENCH_BIN))
 
-bench: bench-build bench-data
+bench-embree-build: bench-peers bench-lib
+	@tools/deps.sh embree
+	@mkdir -p $(dir $(BENCH_EMBREE_BIN))
+	$(call say,CXX,bench/bvhbench.cpp with Embree ($(BENCH_CXX) $(BENCH_CXXFLAGS)))
+	$(Q)$(call bench_compile,$(BENCH_EMBREE_BIN),-DLRT_BENCH_EMBREE \
+	    $(BENCH_PEER_DEFINES),-lembree3)
+
+# With a peer, the program that measures it measures lrt too.
+bench: bench-peers $(if $(BENCH_PEERS),bench-embree-build,bench-build) bench-data
 	@if [ -n "$(SANITIZE)" ]; then \
 	    echo "make bench: measure without SANITIZE" >&2; exit 1; fi
-	$(BENCH_BIN) --data $(BENCH_DATA) --json $(BENCH_JSON) $(BENCH_ARGS)
+	$(if $(BENCH_PEERS),$(BENCH_EMBREE_BIN),$(BENCH_BIN)) --data $(BENCH_DATA) \
+	    --json $(BENCH_JSON) $(BENCH_ARGS)
 endif
 
 .PHONY: bench-data bench-path

@@ -57,7 +57,7 @@ const char *versionNames[] = {"first", "adopted", "final", "embree"};
 struct Agreement {
     std::string mesh, rays;
     size_t count = 0, lrtHits = 0, peerHits = 0, differ = 0;
-    size_t firstRay = 0;           // the first ray that differs
+    size_t firstRay = 0;                 // the first ray that differs
     double firstLrt = 0, firstPeer = 0;  // its distances; infinite: a miss
 };
 struct Column {
@@ -525,11 +525,10 @@ void RunGroup(const BenchMesh &mesh, SplitMethod method,
     int finalLeafSize = method == SplitMethod::SAH ? opt.finalLeafSize
                                                    : opt.firstLeafSize;
     std::vector<Version> versions = {
-        MakeVersion("first", first,
-                    [&] {
-                        return std::make_unique<BVHAccel>(
-                            mesh.prims, opt.firstLeafSize, method);
-                    }),
+        MakeVersion("first", first, [&] {
+            return std::make_unique<BVHAccel>(mesh.prims, opt.firstLeafSize,
+                                              method);
+        }),
         MakeVersion(
             "adopted", std::make_shared<std::unique_ptr<FastBVHAccel>>(),
             [=]() -> std::unique_ptr<FastBVHAccel> {

@@ -440,6 +440,26 @@ class Meet(unittest.TestCase):
                          result.stdout)
         self.assertRegex(result.stdout, r'tools/test_a\.py +1 passed, 0 failed')
 
+    def test_every_python_tests_option_runs(self):
+        # make test CH=09 names two files; only the last one ran.
+        directory = self.python_tests({
+            'test_one.py': 'import unittest\n'
+                           'class One(unittest.TestCase):\n'
+                           '    def test_one(self):\n'
+                           '        pass\n',
+            'test_two.py': 'import unittest\n'
+                           'class Two(unittest.TestCase):\n'
+                           '    def test_two(self):\n'
+                           '        self.fail("expected")\n'})
+        result = subprocess.run(
+            ['python3', os.path.join(TOOLS, 'testing', 'runtests.py'), '--jobs', '1',
+             '--python-tests', os.path.join(directory, 'test_two.py'),
+             '--python-tests', os.path.join(directory, 'test_one.py')],
+            capture_output=True, text=True, timeout=300)
+        self.assertIn('FAILED: tools test_two.Two.test_two', result.stdout)
+        self.assertEqual(result.stdout.strip().splitlines()[-1], 'tests: 1 passed, 1 failed',
+                         result.stdout)
+
     def test_python_file_that_exits_midway_is_a_failure(self):
         directory = self.python_tests({
             'test_exits.py': 'import os, unittest\n'

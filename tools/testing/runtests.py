@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Run GoogleTest binaries and the tools' own tests; print one summary.
 
-    tools/testing/runtests.py [--python-tests DIR_OR_FILE] [LABEL=BINARY ...]
+    tools/testing/runtests.py [--python-tests DIR_OR_FILE ...] [LABEL=BINARY ...]
 
 Each binary runs with a time limit and writes a JSON report; a test counts as
 passed only when that report says so, so a binary that dies midway loses its
@@ -152,7 +152,9 @@ def summarize_python(path, output, code, report):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument('--python-tests', help='a directory of test*.py files, or one file')
+    # Repeatable: make test CH=09 names two files, and each must run.
+    parser.add_argument('--python-tests', action='append', default=[],
+                        help='a directory of test*.py files, or one file (repeatable)')
     parser.add_argument('--python-report', help=argparse.SUPPRESS)
     parser.add_argument('--jobs', type=int, default=os.cpu_count() or 1)
     parser.add_argument('binaries', nargs='*', metavar='LABEL=BINARY')
@@ -162,7 +164,7 @@ def main():
         return
     jobs = max(1, args.jobs)
     binaries = [item.split('=', 1) for item in args.binaries]
-    files = python_test_files(args.python_tests) if args.python_tests else []
+    files = [f for path in args.python_tests for f in python_test_files(path)]
     passed, failed, skipped = 0, [], []
     # One pool for all: the Python files first, as they take longest (they
     # build kits, graders, the benchmark), then the binaries' shards.

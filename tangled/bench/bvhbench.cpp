@@ -812,14 +812,14 @@ void WriteJSON(const std::string &filename,
                     if (std::string(v) != "final") return;
                     js << ", \"" << (what == "build" ? "build_versus" : "versus")
                        << "\": {";
-                    const char *s = "";
+                    const char *comma = "";
                     for (const char *other : comparedTo)
                         if (auto r = rep.PairedRatio(BenchName(*mesh, m, v, what),
                                                      BenchName(*mesh, m, other, what),
                                                      counter)) {
-                            js << s << "\"" << other << "\": {\"median\": " << r->median
+                            js << comma << "\"" << other << "\": {\"median\": " << r->median
                                << ", \"min\": " << r->min << ", \"max\": " << r->max << "}";
-                            s = ", ";
+                            comma = ", ";
                         }
                     js << "}";
                 };

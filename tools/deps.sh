@@ -43,12 +43,13 @@ if [ "${1:-}" != grade ]; then
     need chromium-driver  test -x /usr/bin/chromedriver
     need python3-selenium test -f /usr/lib/python3/dist-packages/selenium/__init__.py
 fi
-# make book-measurements (tools/deps.sh measure) counts instructions with callgrind.
+# make book-measurements (tools/deps.sh measure) counts instructions with
+# callgrind and measures Embree beside lrt.
 if [ "${1:-}" = measure ]; then
     need valgrind command -v valgrind
 fi
 # make bench BENCH_PEERS=embree (tools/deps.sh embree) measures Embree 3 beside lrt.
-if [ "${1:-}" = embree ]; then
+if [ "${1:-}" = embree ] || [ "${1:-}" = measure ]; then
     need libembree-dev test -f /usr/include/embree3/rtcore.h
 fi
 [ ${#missing[@]} -eq 0 ] && exit 0

@@ -104,6 +104,44 @@ class FormatTest(unittest.TestCase):
         self.assertEqual(v['compilers.gcc-O3.L2.build.vs'], '1.17')   # 14 / 12
         self.assertEqual(v['compilers.gcc-O3.instructions.incoherent'], '1,371')
 
+    def test_the_peer_s_values(self):
+        d = data()
+        peer = {'instructions': 756.0, 'mispredicted_branches': 6.03, 'cache_misses': 0.4}
+        for rays in ('camera', 'incoherent'):
+            d['counts'][rays]['embree'] = dict(peer)
+        # Embree reports no tree: its record has speeds and a build time only.
+        d['results'].append({
+            'mesh': 'bunny_L2', 'triangles': 58784, 'method': 'SAH', 'version': 'embree',
+            'build_ms': 18.23, 'rays': {
+                name: {'mrays_per_s': speed, 'ratio': 2.9, 'hits': 398701}
+                for name, speed in (('rays_primary.bin', 12.81),
+                                    ('rays_incoherent.bin', 5.096))}})
+        final = d['results'][2]
+        final['build_versus'] = {'embree': {'median': 0.7219, 'min': 0.634, 'max': 0.8412}}
+        final['rays']['rays_primary.bin']['versus'] = {
+            'first': {'median': 2.83, 'min': 2.6, 'max': 2.9},
+            'embree': {'median': 0.9549, 'min': 0.915, 'max': 1.004}}
+        d['agreement'] = [{'mesh': 'bunny_L2', 'rays': 'rays_primary.bin',
+                           'count': 1048576, 'lrt_hits': 398701, 'peer_hits': 398701,
+                           'differ': 4}]
+        d['setup']['embree'] = '3.13.5'
+        v = book_numbers.values(d)
+        self.assertEqual(v['L2.sah.embree.camera'], '12.8')
+        self.assertEqual(v['L2.sah.embree.incoherent'], '5.10')
+        self.assertEqual(v['L2.sah.embree.build'], '18.2')
+        self.assertEqual(v['L2.sah.final.camera.vsembree'], '0.95')
+        self.assertEqual(v['L2.sah.final.camera.vsembree.min'], '0.92')
+        self.assertEqual(v['L2.sah.final.camera.vsembree.max'], '1.00')
+        self.assertEqual(v['L2.sah.final.build.vsembree'], '0.72')
+        self.assertNotIn('L2.sah.final.incoherent.vsembree', v)   # not measured
+        self.assertNotIn('L2.sah.embree.nodes', v)
+        # 4,608 and 1,152 instructions per ray against Embree's 756
+        self.assertEqual(v['count.camera.final.perembree'], '6.1')
+        self.assertEqual(v['count.incoherent.final.perembree'], '1.5')
+        self.assertEqual(v['count.camera.embree.mispredicted'], '6.0')
+        self.assertEqual(v['L2.agree.camera'], '4')
+        self.assertEqual(v['setup.embree'], '3.13.5')
+
     def test_data_that_is_not_the_measurements_is_an_error(self):
         broken = data()
         del broken['counts']['camera']

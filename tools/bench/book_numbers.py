@@ -16,7 +16,8 @@ the one file that tools/bench/measure.py writes, and cannot disagree.
 line, on a span whose name the data does not define (make lint runs it).
 
 The names, for mesh Lk (k = 0..4), method (sah, hlbvh, middle, equalcounts),
-version (first, adopted, final) and ray set (camera, incoherent):
+version (first, adopted, final; embree, with sah only) and ray set (camera,
+incoherent):
 
     Lk.triangles, Lk.hits.camera            the mesh's size, hit counts
     Lk.method.version.build                 build time, ms
@@ -26,12 +27,18 @@ version (first, adopted, final) and ray set (camera, incoherent):
     Lk.method.version.camera                Mrays/s
     Lk.method.version.camera.ratio          speed / the first version's (median of rounds)
     Lk.method.version.camera.us             microseconds per ray
+    Lk.sah.final.camera.vsembree            speed / Embree's (median of rounds),
+                                            also .min and .max over the rounds;
+                                            Lk.sah.final.build.vsembree likewise
+    Lk.agree.camera                         rays whose hits lrt and Embree
+                                            report differently (Appendix A)
     Lk.method.final.camera.gain             percent faster than the adopted version
     Lk.sah.final.build.percent              build time, percent of the first version's
     Lk.sah.first.nodes.perfinal             the first tree's nodes per node of the final one
     count.ray set.version.instructions      per ray (callgrind), also
                                             .mispredicted, .misses
     count.ray set.first.perfinal            the first version's instructions per final one's
+    count.ray set.final.perembree           the final version's instructions per Embree's
     count.rays, count.rows, count.cache     the samples and the simulated cache
     compilers.NAME.Lk.camera, .ratio, .build   the final version built by
                                             configuration NAME (gcc-O2, gcc-O3,
@@ -43,6 +50,7 @@ version (first, adopted, final) and ray set (camera, incoherent):
     compilers.NAME.instructions.camera      its instructions per ray (callgrind)
     compilers.NAME.compiler, .rounds
     setup.processor, setup.compiler, setup.flags, setup.passes, setup.builds,
+    setup.embree (Embree's version), setup.valgrind,
     setup.rays.camera, setup.rays.incoherent   the sizes of the ray sets
 """
 import json
@@ -88,6 +96,15 @@ def mesh_key(name, path):
     return 'L' + m.group(1)
 
 
+def versus(out, name, record):
+    """The final version's ratio to Embree's, with its range over the rounds,
+    where the record has it (the JSON's `versus` and `build_versus`)."""
+    embree = record.get('versus', {}).get('embree')
+    if embree:
+        for key, suffix in (('median', ''), ('min', '.min'), ('max', '.max')):
+            out['%s.vsembree%s' % (name, suffix)] = '%.2f' % embree[key]
+
+
 def values(data, path='the measurements'):
     """Every printable name -> its text."""
     out = {}
@@ -105,6 +122,13 @@ def values(data, path='the measurements'):
             out[mesh + '.triangles'] = thousands(r['triangles'])
             base = '%s.%s.%s' % (mesh, method, r['version'])
             out[base + '.build'] = significant(r['build_ms'])
+            if r['version'] == 'embree':
+                # The peer reports no tree, only its speeds (Appendix A).
+                for ray_file, rays in RAY_SETS.items():
+                    v = r['rays'][ray_file]
+                    out['%s.%s' % (base, rays)] = significant(v['mrays_per_s'])
+                    out['%s.%s.ratio' % (base, rays)] = '%.2f' % v['ratio']
+                continue
             out[base + '.nodes'] = thousands(r['nodes'])
             out[base + '.leaves'] = thousands(r['leaves'])
             out[base + '.leafsize'] = '%.2f' % r['leaf_size']
@@ -120,6 +144,8 @@ def values(data, path='the measurements'):
                 out['%s.%s.ratio' % (base, rays)] = '%.2f' % v['ratio']
                 out['%s.%s.us' % (base, rays)] = significant(1 / v['mrays_per_s'], 2)
                 out['%s.hits.%s' % (mesh, rays)] = thousands(v['hits'])
+                versus(out, '%s.%s' % (base, rays), v)
+            versus(out, base + '.build', {'versus': r.get('build_versus', {})})
         for (mesh, method, version), r in by.items():
             if version != 'final' or (mesh, method, 'adopted') not in by:
                 continue
@@ -145,6 +171,16 @@ def values(data, path='the measurements'):
                 out[base + '.misses'] = '%.1f' % c['cache_misses']
             out['count.%s.first.perfinal' % rays] = '%.1f' % (
                 counts[rays]['first']['instructions'] / counts[rays]['final']['instructions'])
+            if 'embree' in counts[rays]:
+                out['count.%s.final.perembree' % rays] = '%.1f' % (
+                    counts[rays]['final']['instructions'] /
+                    counts[rays]['embree']['instructions'])
+        for a in data.get('agreement', []):
+            out['%s.agree.%s' % (mesh_key(a['mesh'], path), RAY_SETS[a['rays']])] = \
+                thousands(a['differ'])
+        for key in ('embree', 'valgrind'):
+            if key in setup:
+                out['setup.' + key] = setup[key]
         for ray_file, rays in RAY_SETS.items():
             out['setup.rays.' + rays] = thousands(setup['rays'][ray_file])
         compilers = data.get('compilers', [])   # an older file has none

@@ -3,20 +3,25 @@
 
     tools/bench/measure.py --bench BIN --data DIR --out figures/data/bvh-measurements.json
 
-BIN is the benchmark program of Appendix A (`make bench-build` builds it),
+BIN is the benchmark program of Appendix A built with its peer, Embree
+(`make bench-embree-build` builds it),
 DIR holds the shared generator's data for subdivision levels 0 to 4
 (bunny_L0.ply ... bunny_L4.ply, rays_primary.bin, rays_incoherent.bin).
 `make book-measurements` runs it with both. In one run, one after the other:
 
 1. speeds: the benchmark with the SAH trees of the three versions on the
-   five meshes, then with the other three split methods on the bunnies
-   subdivided twice and four times (L2, L4), each with both ray sets; every
-   version's hit counts must agree, or the run fails;
+   five meshes, with Embree measured in the same rounds, then with the other
+   three split methods on the bunnies subdivided twice and four times (L2,
+   L4), each with both ray sets; every version of lrt must find the same hits,
+   or the run fails (the program itself checks Embree's hits against lrt's,
+   ray by ray, and stops on a disagreement);
 2. counts: Valgrind's callgrind, per ray, in the benchmark's tracing loop
    (TracePass), on L2 with the SAH trees: instructions, mispredicted branches
    and misses of a simulated 1 MB last-level cache, for 65,536 camera rays
    (the middle 64 rows of the 1024 x 1024 image) and the first 65,536
-   incoherent rays. These do not depend on the load of the machine;
+   incoherent rays, and the same for Embree's tracing loop (valgrind
+   emulates no AVX-512, so Embree runs its AVX2 code under callgrind). These
+   do not depend on the load of the machine;
 3. compilers: the benchmark built five ways (GCC and Clang, -O2, -O3, and
    GCC -O3 -march=native; `make bench-build BENCH_CXX=... BENCH_CXXFLAGS=...`),
    the first and the final version with the SAH trees on L2 and L4, in
@@ -43,7 +48,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(HERE)))
 
 LEVELS = (0, 1, 2, 3, 4)
 OTHER_METHODS = 'hlbvh,middle,equalcounts'
-VERSIONS = ('first', 'adopted', 'final')
+VERSIONS = ('first', 'adopted', 'final', 'embree')
 RAY_BYTES = 24               # six float32 per ray
 CAMERA_RESOLUTION = 1024     # the shared generator's image, row-major
 SAMPLE_ROWS = (480, 544)     # the middle 64 rows
@@ -52,7 +57,7 @@ SAMPLE_RAYS = 65536
 # the first version's tree, so the first version's build runs too (callgrind
 # counts only inside TracePass, the tracing).
 FILTERS = {'first': '^bunny_L2/SAH/first/', 'adopted': '^bunny_L2/SAH/(first/build|adopted/)',
-           'final': '^bunny_L2/SAH/final/'}
+           'final': '^bunny_L2/SAH/final/', 'embree': '^bunny_L2/SAH/embree/'}
 LL_CACHE = '1048576,16,64'
 # The compiler configurations (compiler, flags, the name the book gives it);
 # the first is the library's own, which parts 1 and 2 measure.
@@ -95,7 +100,7 @@ def speeds(bench, data, tmp, passes, builds):
     rays = ['--rays', os.path.join(data, 'rays_primary.bin'),
             '--rays', os.path.join(data, 'rays_incoherent.bin')]
     runs = [([l for l in LEVELS], 'sah'), ([2, 4], OTHER_METHODS)]
-    setup, results = None, []
+    setup, results, agreement = None, [], []
     for i, (levels, methods) in enumerate(runs):
         out = os.path.join(tmp, 'speeds%d.json' % i)
         meshes = [a for l in levels
@@ -108,14 +113,20 @@ def speeds(bench, data, tmp, passes, builds):
         setup = setup or {k: part[k] for k in ('compiler', 'cxx', 'cxxflags', 'float',
                                                'passes', 'build_repetitions')}
         results += part['results']
+        agreement += part.get('agreement', [])
     check_hits(results)
-    return setup, results
+    return setup, results, agreement
 
 
 def check_hits(results):
-    """Every version and method must find the same hits on a mesh and ray set."""
+    """Every version and method of lrt must find the same hits on a mesh and
+    ray set. Embree's triangle test is not lrt's, and a ray through an edge
+    may hit on one side only; the program compares its hits with lrt's ray by
+    ray, with an allowance, and stops the run on a disagreement."""
     seen = {}
     for r in results:
+        if r['version'] == 'embree':
+            continue
         for name, v in r['rays'].items():
             key = (r['mesh'], name)
             if seen.setdefault(key, v['hits']) != v['hits']:
@@ -246,6 +257,20 @@ def compilers(data, sample, tmp):
     return result
 
 
+def embree_version():
+    """The version of the Embree headers that the program was compiled with."""
+    try:
+        with open('/usr/include/embree3/rtcore_config.h', encoding='utf-8') as f:
+            for line in f:
+                words = line.split()
+                if words[:2] == ['#define', 'RTC_VERSION_STRING']:
+                    return words[2].strip('"')
+    except OSError:
+        pass
+    fail('no Embree 3 headers (/usr/include/embree3/rtcore_config.h): '
+         'tools/deps.sh embree installs them')
+
+
 def valgrind_version():
     r = subprocess.run(['valgrind', '--version'], stdout=subprocess.PIPE, text=True)
     return r.stdout.strip()
@@ -264,7 +289,8 @@ def main():
             fail('%s: no bunny_L%d.ply (the shared generator with --levels 0,1,2,3,4 '
                  'writes it)' % (args.data, level))
     with tempfile.TemporaryDirectory() as tmp:
-        setup, results = speeds(args.bench, args.data, tmp, args.passes, args.builds)
+        setup, results, agreement = speeds(args.bench, args.data, tmp, args.passes,
+                                           args.builds)
         sample = samples(args.data, tmp)
         measured = counts(args.bench, args.data, sample, tmp)
         configurations = compilers(args.data, sample, tmp)
@@ -272,8 +298,9 @@ def main():
     setup['rays'] = {name: os.path.getsize(os.path.join(args.data, name)) // RAY_BYTES
                      for name in ('rays_primary.bin', 'rays_incoherent.bin')}
     setup['valgrind'] = valgrind_version()
-    data = {'setup': setup, 'results': results, 'counts': measured,
-            'compilers': configurations}
+    setup['embree'] = embree_version()
+    data = {'setup': setup, 'results': results, 'agreement': agreement,
+            'counts': measured, 'compilers': configurations}
     text = json.dumps(data, indent=1, sort_keys=True)
     tmp_out = args.out + '.tmp'
     with open(tmp_out, 'w', encoding='utf-8') as f:

@@ -17,10 +17,10 @@
 # make book-measurements: remeasures figures/data/bvh-measurements.json, the
 # one file behind every measured number of chapter 7, Appendix A and the plot
 # (tools/bench/measure.py: the bench of Appendix A on the bunny subdivided 0 to
-# 4 times, then callgrind's counts per ray; about ten minutes). It needs the
-# shared generator (BENCH_GENERATOR=/path/to/gen_bench_data.py if it is not at
-# ../shared/bench/) and valgrind (tools/deps.sh measure, which make runs for
-# this goal).
+# 4 times, with Embree beside lrt, then callgrind's counts per ray; about ten
+# minutes). It needs the shared generator (BENCH_GENERATOR=/path/to/
+# gen_bench_data.py if it is not at ../shared/bench/), valgrind and Embree
+# (tools/deps.sh measure, which make runs for this goal).
 #
 # The book itself never renders: it includes the committed files.
 
@@ -55,8 +55,8 @@ check-figures: figures-build
 	           "$(MEASUREMENTS); run make figures and commit it" >&2; exit 1; }
 	@echo "$(BENCH_TABLE)      ok: the table of $(MEASUREMENTS)"
 
-book-measurements: bench-build
+book-measurements: bench-embree-build
 	python3 $(BENCH_GENERATOR) --out $(BENCH_LEVELS_DATA) --levels 0,1,2,3,4
-	python3 tools/bench/measure.py --bench $(BENCH_BIN) --data $(BENCH_LEVELS_DATA) \
+	python3 tools/bench/measure.py --bench $(BENCH_EMBREE_BIN) --data $(BENCH_LEVELS_DATA) \
 	    --out $(MEASUREMENTS)
 	python3 tools/bench/table.py $(MEASUREMENTS) > $(BENCH_TABLE)

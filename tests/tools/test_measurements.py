@@ -121,9 +121,14 @@ class FormatTest(unittest.TestCase):
         final['rays']['rays_primary.bin']['versus'] = {
             'first': {'median': 2.83, 'min': 2.6, 'max': 2.9},
             'embree': {'median': 0.9549, 'min': 0.915, 'max': 1.004}}
-        d['agreement'] = [{'mesh': 'bunny_L2', 'rays': 'rays_primary.bin',
-                           'count': 1048576, 'lrt_hits': 398701, 'peer_hits': 398701,
-                           'differ': 4}]
+        d['agreement'] = [
+            {'mesh': mesh, 'rays': rays, 'count': 1048576, 'lrt_hits': 398701,
+             'peer_hits': 398701, 'differ': differ}
+            for mesh, rays, differ in (('bunny_L0', 'rays_primary.bin', 0),
+                                       ('bunny_L2', 'rays_primary.bin', 4),
+                                       ('bunny_L2', 'rays_incoherent.bin', 2),
+                                       ('bunny_L4', 'rays_primary.bin', 12),
+                                       ('bunny_L4', 'rays_incoherent.bin', 8))]
         d['setup']['embree'] = '3.13.5'
         v = book_numbers.values(d)
         self.assertEqual(v['L2.sah.embree.camera'], '12.8')
@@ -140,6 +145,9 @@ class FormatTest(unittest.TestCase):
         self.assertEqual(v['count.incoherent.final.perembree'], '1.5')
         self.assertEqual(v['count.camera.embree.mispredicted'], '6.0')
         self.assertEqual(v['L2.agree.camera'], '4')
+        # The standard data's meshes only: L0's 0 is not the least
+        self.assertEqual(v['agree.least'], '2')
+        self.assertEqual(v['agree.most'], '12')
         self.assertEqual(v['setup.embree'], '3.13.5')
 
     def test_data_that_is_not_the_measurements_is_an_error(self):

@@ -32,6 +32,8 @@ incoherent):
                                             Lk.sah.final.build.vsembree likewise
     Lk.agree.camera                         rays whose hits lrt and Embree
                                             report differently (Appendix A)
+    agree.least, agree.most                 the fewest and the most of those,
+                                            over L2 and L4 and both ray sets
     Lk.method.final.camera.gain             percent faster than the adopted version
     Lk.sah.final.build.percent              build time, percent of the first version's
     Lk.sah.first.nodes.perfinal             the first tree's nodes per node of the final one
@@ -175,9 +177,15 @@ def values(data, path='the measurements'):
                 out['count.%s.final.perembree' % rays] = '%.1f' % (
                     counts[rays]['final']['instructions'] /
                     counts[rays]['embree']['instructions'])
+        standard = []   # the standard data's meshes, L2 and L4
         for a in data.get('agreement', []):
-            out['%s.agree.%s' % (mesh_key(a['mesh'], path), RAY_SETS[a['rays']])] = \
-                thousands(a['differ'])
+            mesh = mesh_key(a['mesh'], path)
+            out['%s.agree.%s' % (mesh, RAY_SETS[a['rays']])] = thousands(a['differ'])
+            if mesh in ('L2', 'L4'):
+                standard.append(a['differ'])
+        if standard:
+            out['agree.least'] = thousands(min(standard))
+            out['agree.most'] = thousands(max(standard))
         for key in ('embree', 'valgrind'):
             if key in setup:
                 out['setup.' + key] = setup[key]

@@ -1101,13 +1101,19 @@ inline lrt::Ray OffsetRay(const lrt::SurfaceHit &si, lrt::Vector3f w) {
 
 // Rays spawned from hits toward random directions on both sides never hit
 // the same shape at t near 0: any hit must lie farther from the origin than
-// the chord of the surface's curvature can make it.
+// the chord of the surface's curvature can make it. The property belongs to
+// shapes that are large beside the error bounds of their hit points: a shape
+// a few hundred units in the last place wide (the small shapes far from the
+// origin) fits in a few of its hit points' error boxes, and a ray offset out
+// of one box may still be within rounding of the shape's other side. Hits
+// whose error bound exceeds a twentieth of the shape's size are counted and
+// skipped.
 inline void RunSpawn(const char *shapeName, const std::vector<QuadricDef> &defs,
                      uint64_t seed) {
     Rng rng(lrt::calls::Seed(seed));
     const int primary = lrt::calls::Cases(400, 15);
     long spawned = 0, nearHits = 0, fartherHits = 0, grazing = 0, chords = 0;
-    long unoffsetNear = 0;
+    long unoffsetNear = 0, tooSmall = 0;
     std::vector<QXf> xfs = Transforms();
     for (const QuadricDef &def : defs) {
         Geom g(def);
@@ -1129,6 +1135,10 @@ inline void RunSpawn(const char *shapeName, const std::vector<QuadricDef> &defs,
                 const lrt::SurfaceHit &si = first.isect;
                 L3 q = M.InvPoint(ToL(si.p));
                 if (std::hypot(q.x, q.y) < 0.1L * g.rRef) continue;
+                if (len3(ToL(si.pError)) > worldR / 20) {
+                    ++tooSmall;
+                    continue;
+                }
                 lrt::Vector3f n = lrt::Normalize(lrt::Vector3f(si.n));
                 for (int k = 0; k < 4; ++k) {
                     lrt::Vector3f w = lrt::Normalize(ToV(RandomDir(rng)));
@@ -1185,10 +1195,11 @@ inline void RunSpawn(const char *shapeName, const std::vector<QuadricDef> &defs,
     std::printf("Quadric %s spawned rays: %ld rays, %ld hit again near the "
                 "origin where the exact line does not (%ld short chords that "
                 "it does), %ld hit the shape farther away, %ld grazing "
-                "directions skipped; from the hit points themselves, %ld hit "
-                "again near the origin\n",
+                "directions skipped, %ld hits on shapes too small beside "
+                "their error bounds skipped; from the hit points themselves, "
+                "%ld hit again near the origin\n",
                 shapeName, spawned, nearHits, chords, fartherHits, grazing,
-                unoffsetNear);
+                tooSmall, unoffsetNear);
     EXPECT_EQ(nearHits, 0);
     EXPECT_GT(spawned, lrt::calls::Cases(1000, 20));
 }

@@ -241,6 +241,9 @@ struct Geom {
     LD Height() const { return zHi - zLo; }
     // Is the point (of the surface of revolution) on the shape?
     bool Contains(L3 p) const;
+    // Whether p lies within distance tol of the part that the cuts keep: a
+    // point that rounding may carry across a cut.
+    bool ContainsWithin(L3 p, LD tol) const;
     // Q(z), its derivative, and the magnitude of its terms.
     LD Q(LD z) const {
         LD lx = Lax + (z - zr) * Lbx, ly = Lay + (z - zr) * Lby;
@@ -343,6 +346,18 @@ struct Geom {
 inline bool Geom::Contains(L3 p) const {
     return !((cutLo && p.z < zLo) || (cutHi && p.z > zHi) ||
              ToUV(p).phi > phiMax);
+}
+
+inline bool Geom::ContainsWithin(L3 p, LD tol) const {
+    if ((cutLo && p.z < zLo - tol) || (cutHi && p.z > zHi + tol)) return false;
+    LD phi = ToUV(p).phi;
+    if (phi <= phiMax) return true;
+    // Past the cut: the distance to the nearer of the two half-planes that
+    // bound the sector, phi = phiMax and phi = 0 (= 2 pi).
+    const LD pi = 3.14159265358979323846264338327950288L;
+    LD past = std::min(phi - phiMax, 2 * pi - phi);
+    LD rho = std::hypot(p.x, p.y);
+    return (past >= pi / 2 ? rho : rho * std::sin(past)) <= tol;
 }
 
 // The unit normal and its partial derivatives, by central differences of
@@ -586,7 +601,9 @@ inline QOracle Trace(const Geom &g, const ObjectRay &ray, LD tMax) {
 // inverse, computed here by cofactors.
 struct LAffine {
     LD m[3][4], inv[3][4];
-    LD norm = 1;  // Frobenius norm of the linear part (bounds its scale)
+    LD norm = 1;     // Frobenius norm of the linear part (bounds its scale)
+    LD invNorm = 1;  // that of the inverse: a world distance d is at most
+                     // invNorm * d in object space
     bool mirror = false;
     explicit LAffine(const lrt::Transform &t) {
         const lrt::Matrix4x4 &M = t.GetMatrix();
@@ -610,6 +627,10 @@ struct LAffine {
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) s += m[i][j] * m[i][j];
         norm = std::sqrt(s);
+        LD si = 0;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) si += inv[i][j] * inv[i][j];
+        invNorm = std::sqrt(si);
     }
     static L3 Apply(const LD a[3][4], L3 p, LD w) {
         return L3(a[0][0] * p.x + a[0][1] * p.y + a[0][2] * p.z + a[0][3] * w,
@@ -1164,7 +1185,8 @@ inline void RunSpawn(const char *shapeName, const std::vector<QuadricDef> &defs,
                     const lrt::SurfaceHit &si2 = h2.isect;
                     // A hit near the origin is a self-intersection unless
                     // the exact line does meet the shape there, in front
-                    // (a short chord across a concave side).
+                    // (a short chord across a concave side), or within the
+                    // slack of a cut (rounding may carry a point across it).
                     LD dl = len3(ToL(sr.d)), dist = t2 * dl;
                     LD slack = 4 * std::max(len3(ToL(si.pError)),
                                             len3(ToL(si2.pError))) +
@@ -1178,7 +1200,8 @@ inline void RunSpawn(const char *shapeName, const std::vector<QuadricDef> &defs,
                     bool real = false;
                     for (LD t : ExactRoots(g, ob))
                         if (t > 0 && std::abs(t - t2) * dl <= slack &&
-                            g.Contains(ob.o + t * ob.d))
+                            g.ContainsWithin(ob.o + t * ob.d,
+                                             M.invNorm * slack))
                             real = true;
                     if (real) {
                         ++chords;

@@ -98,10 +98,11 @@ def mesh_key(name, path):
     return 'L' + m.group(1)
 
 
-def versus(out, name, record):
+def versus(out, name, ratios):
     """The final version's ratio to Embree's, with its range over the rounds,
-    where the record has it (the JSON's `versus` and `build_versus`)."""
-    embree = record.get('versus', {}).get('embree')
+    where the record has it: `ratios` is the JSON's `versus` or `build_versus`
+    (absent from the records of the other versions)."""
+    embree = (ratios or {}).get('embree')
     if embree:
         for key, suffix in (('median', ''), ('min', '.min'), ('max', '.max')):
             out['%s.vsembree%s' % (name, suffix)] = '%.2f' % embree[key]
@@ -146,8 +147,8 @@ def values(data, path='the measurements'):
                 out['%s.%s.ratio' % (base, rays)] = '%.2f' % v['ratio']
                 out['%s.%s.us' % (base, rays)] = significant(1 / v['mrays_per_s'], 2)
                 out['%s.hits.%s' % (mesh, rays)] = thousands(v['hits'])
-                versus(out, '%s.%s' % (base, rays), v)
-            versus(out, base + '.build', {'versus': r.get('build_versus', {})})
+                versus(out, '%s.%s' % (base, rays), v.get('versus'))
+            versus(out, base + '.build', r.get('build_versus'))
         for (mesh, method, version), r in by.items():
             if version != 'final' or (mesh, method, 'adopted') not in by:
                 continue
